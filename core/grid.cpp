@@ -1,0 +1,42 @@
+#include "wrc/grid.h"
+
+#include <cmath>
+#include <string>
+
+namespace wrc {
+
+void Grid::Validate() const {
+  if (nx < 1 || ny < 1) {
+    throw std::invalid_argument("grid has " + std::to_string(nx) + " x " + std::to_string(ny) +
+                                " elements: need at least 1 x 1");
+  }
+  if (!(std::isfinite(dx) && dx > 0.0) || !(std::isfinite(dy) && dy > 0.0)) {
+    throw std::invalid_argument("grid element size " + std::to_string(dx) + " x " +
+                                std::to_string(dy) + ": must be positive and finite");
+  }
+  if (!std::isfinite(x0) || !std::isfinite(y0)) {
+    throw std::invalid_argument("grid origin is not finite");
+  }
+}
+
+Grid Grid::Covering(double xmin, double xmax, double ymin, double ymax, double dx, double dy) {
+  Grid g;
+  g.dx = dx;
+  g.dy = dy;
+  if (!(xmax > xmin) || !(ymax > ymin)) {
+    throw std::invalid_argument("grid range is empty: need xmin < xmax and ymin < ymax");
+  }
+  if (!(dx > 0.0) || !(dy > 0.0)) {
+    throw std::invalid_argument("grid element size must be positive");
+  }
+  // Rounding, not truncation: the range is meant to be a whole number of cells, and
+  // (xmax - xmin)/dx lands a few ulps below that integer for values like 8.96/0.28.
+  g.nx = static_cast<int>(std::lround((xmax - xmin) / dx));
+  g.ny = static_cast<int>(std::lround((ymax - ymin) / dy));
+  g.x0 = xmin + 0.5 * dx;
+  g.y0 = ymin + 0.5 * dy;
+  g.Validate();
+  return g;
+}
+
+}  // namespace wrc

@@ -1,0 +1,110 @@
+#include "wrc/influence.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace wrc {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Antiderivatives F(X, Y) with ∂²F/∂X∂Y = kernel(X, Y). Terms that depend on X alone or on Y
+// alone cancel in the corner sum of RectangleIntegral, so they are left out; this also removes
+// the log singularities (X ln|X|) that would otherwise need special cases.
+
+// ∫∫ 1/r: X·asinh(Y/|X|) + Y·asinh(X/|Y|)  (= X ln(Y + r) + Y ln(X + r) up to such terms).
+double AntiInverseR(double X, double Y) {
+  double f = 0.0;
+  if (X != 0.0) f += X * std::asinh(Y / std::fabs(X));
+  if (Y != 0.0) f += Y * std::asinh(X / std::fabs(Y));
+  return f;
+}
+// ∫∫ X²/r³: Y·asinh(X/|Y|), since ∂/∂X [Y ln(X + r)] = Y/r and ∂/∂Y [Y/r] = X²/r³.
+double AntiXXOverR3(double X, double Y) {
+  return Y != 0.0 ? Y * std::asinh(X / std::fabs(Y)) : 0.0;
+}
+// ∫∫ Y²/r³: X·asinh(Y/|X|) by symmetry.
+double AntiYYOverR3(double X, double Y) { return AntiXXOverR3(Y, X); }
+// ∫∫ XY/r³: −r.
+double AntiXYOverR3(double X, double Y) { return -std::hypot(X, Y); }
+// ∫∫ X/r²: ½·Y·ln(X² + Y²) + X·atan(Y/X)  (the −Y term cancels).
+double AntiXOverR2(double X, double Y) {
+  double f = 0.0;
+  const double r2 = X * X + Y * Y;
+  if (Y != 0.0 && r2 > 0.0) f += 0.5 * Y * std::log(r2);
+  if (X != 0.0) f += X * std::atan(Y / X);
+  return f;
+}
+
+// Integral of kernel(X − ξ, Y − η) over ξ ∈ [−hx, hx], η ∈ [−hy, hy].
+template <typename Anti>
+double RectangleIntegral(Anti anti, double X, double Y, double hx, double hy) {
+  return anti(X + hx, Y + hy) - anti(X - hx, Y + hy) - anti(X + hx, Y - hy) +
+         anti(X - hx, Y - hy);
+}
+
+}  // namespace
+
+double PointLoadKernel(InfluenceComponent c, const CombinedElasticity& m, double X, double Y) {
+  const double r = std::hypot(X, Y);
+  const double scale = 1.0 / (kPi * m.shear_modulus);
+  const double nu = m.poisson;
+  switch (c) {
+    case InfluenceComponent::kNN:
+      return scale * (1.0 - nu) / r;
+    case InfluenceComponent::kXX:
+      return scale * ((1.0 - nu) / r + nu * X * X / (r * r * r));
+    case InfluenceComponent::kYY:
+      return scale * ((1.0 - nu) / r + nu * Y * Y / (r * r * r));
+    case InfluenceComponent::kXY:
+      return scale * nu * X * Y / (r * r * r);
+    case InfluenceComponent::kXN:
+      return -scale * m.kappa * X / (r * r);
+    case InfluenceComponent::kNX:
+      return scale * m.kappa * X / (r * r);
+  }
+  throw std::invalid_argument("unknown influence component");
+}
+
+double RectangleInfluence(InfluenceComponent c, const CombinedElasticity& m, double X, double Y,
+                          double hx, double hy) {
+  const double scale = 1.0 / (kPi * m.shear_modulus);
+  const double nu = m.poisson;
+  switch (c) {
+    case InfluenceComponent::kNN:
+      return scale * (1.0 - nu) * RectangleIntegral(AntiInverseR, X, Y, hx, hy);
+    case InfluenceComponent::kXX:
+      return scale * ((1.0 - nu) * RectangleIntegral(AntiInverseR, X, Y, hx, hy) +
+                      nu * RectangleIntegral(AntiXXOverR3, X, Y, hx, hy));
+    case InfluenceComponent::kYY:
+      return scale * ((1.0 - nu) * RectangleIntegral(AntiInverseR, X, Y, hx, hy) +
+                      nu * RectangleIntegral(AntiYYOverR3, X, Y, hx, hy));
+    case InfluenceComponent::kXY:
+      return scale * nu * RectangleIntegral(AntiXYOverR3, X, Y, hx, hy);
+    case InfluenceComponent::kXN:
+      return -scale * m.kappa * RectangleIntegral(AntiXOverR2, X, Y, hx, hy);
+    case InfluenceComponent::kNX:
+      return scale * m.kappa * RectangleIntegral(AntiXOverR2, X, Y, hx, hy);
+  }
+  throw std::invalid_argument("unknown influence component");
+}
+
+InfluenceCoefficients::InfluenceCoefficients(const Grid& grid, const CombinedElasticity& material,
+                                             InfluenceComponent component)
+    : grid_(grid), component_(component) {
+  grid_.Validate();
+  const int wx = 2 * grid_.nx - 1;
+  const int wy = 2 * grid_.ny - 1;
+  values_.resize(static_cast<std::size_t>(wx) * static_cast<std::size_t>(wy));
+  const double hx = 0.5 * grid_.dx;
+  const double hy = 0.5 * grid_.dy;
+  for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
+    for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
+      values_[static_cast<std::size_t>(di + grid_.nx - 1) +
+              static_cast<std::size_t>(wx) * static_cast<std::size_t>(dj + grid_.ny - 1)] =
+          RectangleInfluence(component, material, di * grid_.dx, dj * grid_.dy, hx, hy);
+    }
+  }
+}
+
+}  // namespace wrc

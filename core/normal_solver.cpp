@@ -1,0 +1,206 @@
+#include "wrc/normal_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wrc {
+namespace {
+
+void Validate(const FftInfluenceOperator& op, const std::vector<double>& h,
+              const NormalLoad& load) {
+  if (!op.has(InfluenceComponent::kNN)) {
+    throw std::invalid_argument("normal solve needs the kNN influence component");
+  }
+  if (h.size() != op.grid().size()) {
+    throw std::invalid_argument("undeformed distance has " + std::to_string(h.size()) +
+                                " values for a grid of " + std::to_string(op.grid().size()));
+  }
+  for (double v : h) {
+    if (!std::isfinite(v)) throw std::invalid_argument("undeformed distance is not finite");
+  }
+  if (!std::isfinite(load.value)) throw std::invalid_argument("normal load is not finite");
+  if (load.kind == NormalLoad::Kind::kForce && load.value < 0.0) {
+    throw std::invalid_argument("prescribed normal force " + std::to_string(load.value) +
+                                " N is negative");
+  }
+}
+
+void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double approach,
+            NormalWorkspace& ws, NormalSolution& sol) {
+  const std::size_t n = h.size();
+  op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.response.data(), ws.convolution);
+  sol.deformed.resize(n);
+  sol.approach = approach;
+  double sum = 0.0, pmax = 0.0;
+  int n_contact = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sol.deformed[i] = h[i] - approach + ws.response[i];
+    sum += sol.pressure[i];
+    pmax = std::max(pmax, sol.pressure[i]);
+    n_contact += sol.pressure[i] > 0.0;
+  }
+  sol.force = sum * op.grid().element_area();
+  sol.pmax = pmax;
+  sol.n_contact = n_contact;
+}
+
+}  // namespace
+
+NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
+                          const NormalLoad& load, const NormalOptions& options,
+                          NormalWorkspace& ws, NormalSolution& sol) {
+  Validate(op, h, load);
+  const std::size_t n = h.size();
+  const double area = op.grid().element_area();
+  const bool force_control = load.kind == NormalLoad::Kind::kForce;
+  NormalSummary summary;
+
+  ws.gap.resize(n);
+  ws.direction.assign(n, 0.0);
+  ws.response.resize(n);
+  ws.previous.resize(n);
+  if (!op.Fits(ws.convolution)) ws.convolution = op.MakeWorkspace();
+
+  // Cases with nothing to solve: zero force, or no interpenetration at the given approach.
+  const double hmin = *std::min_element(h.begin(), h.end());
+  const bool no_contact = force_control ? load.value == 0.0 : hmin - load.value >= 0.0;
+  if (no_contact) {
+    sol.pressure.assign(n, 0.0);
+    Finish(op, h, force_control ? hmin : load.value, ws, sol);
+    summary.status = SolverStatus::kNoContact;
+    return summary;
+  }
+
+  // Initial guess: the warm start, or a pressure that is uniform (force control) or
+  // proportional to the interpenetration through the element's own stiffness.
+  const bool warm = options.warm_start && sol.pressure.size() == n &&
+                    std::any_of(sol.pressure.begin(), sol.pressure.end(),
+                                [](double p) { return p > 0.0; });
+  if (!warm) {
+    sol.pressure.assign(n, 0.0);
+    if (force_control) {
+      std::fill(sol.pressure.begin(), sol.pressure.end(), load.value / (area * n));
+    } else {
+      const double self = RectangleInfluence(InfluenceComponent::kNN, op.material(), 0.0, 0.0,
+                                             0.5 * op.grid().dx, 0.5 * op.grid().dy);
+      for (std::size_t i = 0; i < n; ++i) {
+        sol.pressure[i] = std::max(0.0, load.value - h[i]) / self;
+      }
+    }
+  }
+  if (force_control) {
+    double sum = 0.0;
+    for (double p : sol.pressure) sum += p;
+    const double scale = load.value / (area * sum);
+    for (double& p : sol.pressure) p *= scale;
+  }
+
+  // Polonsky & Keer (1999), Wear 231: CG restricted to the elements in contact, with the
+  // projection p >= 0 after each step and re-activation of elements where the gap is negative.
+  // Under force control the mean gap over the contact is the (unknown) approach, so it is
+  // subtracted from the residual and the step, and the total force is re-imposed every step.
+  double gap_norm_old = 1.0;
+  bool conjugate = false;
+  double mean_gap = 0.0;
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
+    double sum_gap = 0.0;
+    int n_active = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ws.gap[i] += h[i] - (force_control ? 0.0 : load.value);
+      if (sol.pressure[i] > 0.0) {
+        sum_gap += ws.gap[i];
+        ++n_active;
+      }
+    }
+    if (n_active == 0) {
+      // Everything lifted off (only possible under approach control when the initial guess
+      // overshot): restart from the interpenetration.
+      for (std::size_t i = 0; i < n; ++i) {
+        sol.pressure[i] = std::max(0.0, -ws.gap[i]);
+      }
+      conjugate = false;
+      continue;
+    }
+    mean_gap = force_control ? sum_gap / n_active : 0.0;
+    double gap_norm = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ws.gap[i] -= mean_gap;
+      if (sol.pressure[i] > 0.0) gap_norm += ws.gap[i] * ws.gap[i];
+    }
+    const double beta = conjugate ? gap_norm / gap_norm_old : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ws.direction[i] = sol.pressure[i] > 0.0 ? ws.gap[i] + beta * ws.direction[i] : 0.0;
+    }
+    gap_norm_old = gap_norm;
+
+    op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
+    double mean_response = 0.0;
+    if (force_control) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (sol.pressure[i] > 0.0) sum += ws.response[i];
+      }
+      mean_response = sum / n_active;
+    }
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (sol.pressure[i] > 0.0) {
+        num += ws.gap[i] * ws.direction[i];
+        den += (ws.response[i] - mean_response) * ws.direction[i];
+      }
+    }
+    const double tau = den > 0.0 ? num / den : 0.0;
+
+    ws.previous = sol.pressure;
+    bool overlap = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (ws.previous[i] > 0.0) {
+        sol.pressure[i] = std::max(0.0, ws.previous[i] - tau * ws.direction[i]);
+      } else if (ws.gap[i] < 0.0) {
+        // Interpenetration outside the contact: let the element carry load again.
+        sol.pressure[i] = -tau * ws.gap[i];
+        overlap = overlap || sol.pressure[i] > 0.0;
+        if (sol.pressure[i] < 0.0) sol.pressure[i] = 0.0;
+      }
+    }
+    conjugate = !overlap;
+
+    double sum = 0.0;
+    for (double p : sol.pressure) sum += p;
+    if (force_control && sum > 0.0) {
+      const double scale = load.value / (area * sum);
+      for (double& p : sol.pressure) p *= scale;
+      sum = load.value / area;
+    }
+    double change = 0.0;
+    for (std::size_t i = 0; i < n; ++i) change += std::fabs(sol.pressure[i] - ws.previous[i]);
+    summary.iterations = it;
+    summary.residual = sum > 0.0 ? change / sum : 0.0;
+    if (summary.residual < options.tolerance) {
+      summary.status = SolverStatus::kConverged;
+      break;
+    }
+  }
+
+  // The approach under force control is the mean gap over the final contact area.
+  double approach = load.value;
+  if (force_control) {
+    op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
+    double sum_gap = 0.0;
+    int n_active = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (sol.pressure[i] > 0.0) {
+        sum_gap += ws.gap[i] + h[i];
+        ++n_active;
+      }
+    }
+    approach = n_active > 0 ? sum_gap / n_active : mean_gap;
+  }
+  Finish(op, h, approach, ws, sol);
+  return summary;
+}
+
+}  // namespace wrc

@@ -1,0 +1,88 @@
+#pragma once
+/// @file influence_operator.h
+/// Matrix-free application of the influence matrices u = A·p on a grid, by zero-padded FFT
+/// convolution (the matrices are block-Toeplitz, paper §2.7), plus a dense version kept as the
+/// test oracle.
+
+#include <array>
+#include <complex>
+#include <memory>
+#include <vector>
+
+#include "wrc/grid.h"
+#include "wrc/influence.h"
+#include "wrc/material.h"
+
+namespace wrc {
+
+namespace fftw {
+class Plan2d;
+}
+
+/// Scratch memory for FftInfluenceOperator, owned by the caller so that one operator can serve
+/// several threads (each with its own workspace) and repeated solves allocate nothing.
+class ConvolutionWorkspace {
+ public:
+  ConvolutionWorkspace();
+  ~ConvolutionWorkspace();
+  ConvolutionWorkspace(ConvolutionWorkspace&&) noexcept;
+  ConvolutionWorkspace& operator=(ConvolutionWorkspace&&) noexcept;
+
+ private:
+  friend class FftInfluenceOperator;
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;
+};
+
+/// Applies the influence coefficients of one grid by FFT. The kernels' spectra are computed once
+/// at construction; plans are made once and executed on workspace buffers.
+class FftInfluenceOperator {
+ public:
+  /// Prepares the kernels listed in `components` (others cannot be applied).
+  FftInfluenceOperator(const Grid& grid, const CombinedElasticity& material,
+                       const std::vector<InfluenceComponent>& components);
+  ~FftInfluenceOperator();
+  FftInfluenceOperator(const FftInfluenceOperator&) = delete;
+  FftInfluenceOperator& operator=(const FftInfluenceOperator&) = delete;
+
+  const Grid& grid() const { return grid_; }
+  const CombinedElasticity& material() const { return material_; }
+  bool has(InfluenceComponent c) const { return spectra_[Index(c)].size() > 0; }
+
+  /// A workspace sized for this operator.
+  ConvolutionWorkspace MakeWorkspace() const;
+  /// Whether `ws` was made for an operator of this operator's FFT size.
+  bool Fits(const ConvolutionWorkspace& ws) const;
+
+  /// out = A_c · in, both of grid().size() values.
+  void Apply(InfluenceComponent c, const double* in, double* out, ConvolutionWorkspace& ws) const;
+
+  /// The tangential block [ux; uy] = [[Axx, Axy]; [Axy, Ayy]]·[px; py] with two forward and two
+  /// backward transforms instead of eight.
+  void ApplyTangential(const double* px, const double* py, double* ux, double* uy,
+                       ConvolutionWorkspace& ws) const;
+
+ private:
+  static std::size_t Index(InfluenceComponent c) { return static_cast<std::size_t>(c); }
+  void Forward(const double* in, std::complex<double>* spectrum, ConvolutionWorkspace& ws) const;
+  void Backward(std::complex<double>* spectrum, double* out, ConvolutionWorkspace& ws) const;
+
+  Grid grid_;
+  CombinedElasticity material_;
+  std::unique_ptr<fftw::Plan2d> plan_;
+  // Kernel spectra, scaled by 1/N so that Backward needs no extra pass; empty when not prepared.
+  std::array<std::vector<std::complex<double>>, 6> spectra_;
+};
+
+/// The same operator as a dense matrix-vector product: O(n²), for tests only.
+class DenseInfluenceOperator {
+ public:
+  DenseInfluenceOperator(const Grid& grid, const CombinedElasticity& material);
+  void Apply(InfluenceComponent c, const double* in, double* out) const;
+
+ private:
+  Grid grid_;
+  CombinedElasticity material_;
+};
+
+}  // namespace wrc

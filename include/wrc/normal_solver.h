@@ -1,0 +1,67 @@
+#pragma once
+/// @file normal_solver.h
+/// The normal contact problem on a grid (paper Eq. 12a–b): find pressures p >= 0 with deformed
+/// distance e = h + A·p >= 0 and p·e = 0, for prescribed approach or prescribed total force.
+
+#include <vector>
+
+#include "wrc/influence_operator.h"
+#include "wrc/solver_status.h"
+
+namespace wrc {
+
+/// Options of the normal solver.
+struct NormalOptions {
+  /// Stop when the relative change of the pressures in one iteration, Σ|Δp| / Σp, drops below
+  /// this. 1e-10 is four orders below CONTACT's EPS = 1e-6 so that results agree to CONTACT's
+  /// printed digits, at a cost of only a few more iterations (the method converges linearly
+  /// but fast, see bench_normal).
+  double tolerance = 1e-10;
+  int max_iterations = 2000;
+  /// Start from the pressures already in NormalSolution::pressure when their size fits the grid
+  /// (e.g. a neighbouring point of a sweep); otherwise from a uniform pressure.
+  bool warm_start = false;
+};
+
+/// What is prescribed: the total normal force or the approach.
+struct NormalLoad {
+  enum class Kind { kForce, kApproach };
+  Kind kind = Kind::kForce;
+  double value = 0.0;  ///< N for kForce, mm for kApproach.
+
+  static NormalLoad Force(double fn) { return {Kind::kForce, fn}; }
+  static NormalLoad Approach(double approach) { return {Kind::kApproach, approach}; }
+};
+
+/// Result of a normal solve.
+struct NormalSolution {
+  std::vector<double> pressure;   ///< N/mm² per element, i fastest.
+  std::vector<double> deformed;   ///< Deformed distance e = h − approach + A·p per element, mm.
+  double approach = 0.0;          ///< mm (prescribed or found).
+  double force = 0.0;             ///< Σ p·dA, N.
+  double pmax = 0.0;              ///< N/mm².
+  int n_contact = 0;              ///< Elements with p > 0.
+};
+
+/// Iterations, residual and status of a solve.
+struct NormalSummary {
+  SolverStatus status = SolverStatus::kNotConverged;
+  int iterations = 0;
+  double residual = 0.0;  ///< Last relative pressure change.
+};
+
+/// Scratch memory for SolveNormal, caller-owned so that repeated solves do not allocate.
+struct NormalWorkspace {
+  ConvolutionWorkspace convolution;
+  std::vector<double> gap, direction, response, previous;
+};
+
+/// Solves the normal problem for undeformed distance `h` (excluding the approach: the gap is
+/// h − approach + A·p) by the active-set conjugate gradient method of Polonsky & Keer (1999),
+/// which is also the basis of CONTACT's NormCG. Throws std::invalid_argument for bad input
+/// (size mismatch, non-finite h, negative force); non-convergence is reported in the summary.
+NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
+                          const NormalLoad& load, const NormalOptions& options,
+                          NormalWorkspace& workspace, NormalSolution& solution);
+
+}  // namespace wrc
