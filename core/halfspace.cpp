@@ -1,0 +1,93 @@
+#include "wrc/halfspace.h"
+
+#include <cmath>
+
+#include "wrc/errors.h"
+#include "wrc/hertz.h"
+
+namespace wrc {
+
+Grid HalfspaceGrid(const Case& c) {
+  const GridSettings& gs = c.grid;
+  if (gs.x && gs.y) return Grid::Covering(gs.x->min, gs.x->max, gs.y->min, gs.y->max, gs.dx, gs.dy);
+  const CombinedElasticity m = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
+  const HertzContact hertz(c.geometry.a1, c.geometry.b1, m.EffectiveModulus());
+  const HalfspaceState& st = c.halfspace_state;
+  const HertzSolution hz =
+      st.fn ? hertz.ForForce(*st.fn) : hertz.ForApproach(std::max(*st.approach, 0.0));
+  // 25 % margin: the half-space solution stays inside the Hertz ellipse for these smooth
+  // quadratic gaps, and tangential loading does not change the contact area when K = 0.
+  const double ax = std::max(1.25 * hz.semi_axis_x, 2.0 * gs.dx);
+  const double ay = std::max(1.25 * hz.semi_axis_y, 2.0 * gs.dy);
+  const Interval x = gs.x.value_or(Interval{-ax, ax});
+  const Interval y = gs.y.value_or(Interval{-ay, ay});
+  return Grid::Covering(x.min, x.max, y.min, y.max, gs.dx, gs.dy);
+}
+
+HalfspaceResult SolveHalfspace(const Case& c, const NormalOptions& normal_options,
+                               const TangentialOptions& tangential_options) {
+  if (c.type != CaseType::kHalfspace) throw InputError("not a half-space case");
+  HalfspaceResult r;
+  r.grid = HalfspaceGrid(c);
+  const Grid& g = r.grid;
+  const CombinedElasticity m = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
+
+  r.h.resize(g.size());
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      r.h[g.index(i, j)] = c.geometry.a1 * g.x(i) * g.x(i) + c.geometry.b1 * g.y(j) * g.y(j);
+    }
+  }
+  const HalfspaceState& st = c.halfspace_state;
+  const NormalLoad load = st.fn ? NormalLoad::Force(*st.fn) : NormalLoad::Approach(*st.approach);
+
+  FftInfluenceOperator normal_op(g, m, {InfluenceComponent::kNN});
+  NormalWorkspace nws;
+  NormalSolution ns;
+  r.normal_summary = SolveNormal(normal_op, r.h, load, normal_options, nws, ns);
+  r.status = r.normal_summary.status;
+  r.fn = ns.force;
+  r.pmax = ns.pmax;
+  r.approach = ns.approach;
+  r.n_contact = ns.n_contact;
+  r.area = ns.n_contact * g.element_area();
+  r.pressure = std::move(ns.pressure);
+
+  if (c.effects.tangential && r.status != SolverStatus::kNoContact) {
+    const SteadyRollingOperator rolling(g, m);
+    TangentialProblem tp;
+    tp.pressure = r.pressure;
+    tp.mu = {c.friction.MuAt(0.0)};
+    tp.wx.resize(g.size());
+    tp.wy.resize(g.size());
+    // CONTACT's rigid slip for steady rolling in +x (user guide Eq. rig_shift_roll): the spin
+    // term is evaluated at x + δq/6, compensating for the distance rolled in one step.
+    const double dq = g.dx;
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        tp.wx[g.index(i, j)] = st.cksi - st.cphi * g.y(j);
+        tp.wy[g.index(i, j)] = st.ceta + st.cphi * (g.x(i) + dq / 6.0);
+      }
+    }
+    TangentialWorkspace tws;
+    TangentialSolution ts;
+    r.tangential_summary = SolveTangential(rolling, tp, tangential_options, tws, ts);
+    r.tangential_solved = true;
+    if (r.tangential_summary.status == SolverStatus::kNotConverged) {
+      r.status = SolverStatus::kNotConverged;
+    }
+    r.fx = ts.fx;
+    r.fy = ts.fy;
+    r.mz = ts.mz;
+    r.n_slip = ts.n_slip;
+    r.n_adhesion = ts.n_adhesion;
+    r.px = std::move(ts.px);
+    r.py = std::move(ts.py);
+    r.sx = std::move(ts.sx);
+    r.sy = std::move(ts.sy);
+    r.state = std::move(ts.state);
+  }
+  return r;
+}
+
+}  // namespace wrc

@@ -1,0 +1,252 @@
+#include "wrc/tangential_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wrc {
+namespace {
+
+Grid Extended(const Grid& g) {
+  Grid e = g;
+  e.nx = g.nx + 1;  // one column beyond the leading edge (x > 0), where p = 0
+  return e;
+}
+
+void Validate(const SteadyRollingOperator& op, const TangentialProblem& pb) {
+  const std::size_t n = op.grid().size();
+  if (pb.pressure.size() != n || pb.wx.size() != n || pb.wy.size() != n) {
+    throw std::invalid_argument("tangential problem: pressure/rigid slip sizes differ from grid");
+  }
+  if (pb.mu.size() != 1 && pb.mu.size() != n) {
+    throw std::invalid_argument("tangential problem: mu must have 1 or grid-size values");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(pb.pressure[i]) || !std::isfinite(pb.wx[i]) || !std::isfinite(pb.wy[i])) {
+      throw std::invalid_argument("tangential problem: non-finite pressure or rigid slip");
+    }
+  }
+  for (double m : pb.mu) {
+    if (!std::isfinite(m) || m < 0.0) {
+      throw std::invalid_argument("tangential problem: friction coefficient " +
+                                  std::to_string(m) + " is negative or not finite");
+    }
+  }
+}
+
+struct LocalResult {
+  double px, py;
+  bool slip;
+};
+
+// The Coulomb problem of one element with local stiffness diag(kx, ky) (the change of its own
+// slip per unit change of its own traction) and free slip (sfx, sfy) = slip at zero traction:
+// s = sf + K·p. Adhesion if s = 0 is reachable inside the traction bound g; otherwise
+// p = −(λI + K)⁻¹·sf with |p| = g and λ >= 0 (then s = −λ·p, opposite to p as Eq. 12e asks).
+LocalResult SolveLocal(double sfx, double sfy, double kx, double ky, double bound) {
+  const double ax = -sfx / kx, ay = -sfy / ky;
+  if (ax * ax + ay * ay <= bound * bound) return {ax, ay, false};
+  const double sf = std::hypot(sfx, sfy);
+  // f(λ) = |p(λ)|² − g² is convex and decreasing; Newton from a point with f >= 0 converges
+  // monotonically. λ0 = |sf|/g − max(k) gives f(λ0) >= 0 (each denominator <= |sf|/g).
+  double lambda = std::max(0.0, sf / bound - std::max(kx, ky));
+  for (int it = 0; it < 60; ++it) {
+    const double dx = lambda + kx, dy = lambda + ky;
+    const double qx = sfx / dx, qy = sfy / dy;
+    const double f = qx * qx + qy * qy - bound * bound;
+    const double df = -2.0 * (qx * qx / dx + qy * qy / dy);
+    const double step = -f / df;
+    lambda += step;
+    if (std::fabs(step) <= 1e-14 * (lambda + kx)) break;
+  }
+  double px = -sfx / (lambda + kx), py = -sfy / (lambda + ky);
+  // Put the traction exactly on the bound (Newton leaves a relative error ~1e-14).
+  const double norm = std::hypot(px, py);
+  if (norm > 0.0) {
+    px *= bound / norm;
+    py *= bound / norm;
+  }
+  return {px, py, true};
+}
+
+}  // namespace
+
+SteadyRollingOperator::SteadyRollingOperator(const Grid& grid, const CombinedElasticity& material)
+    : grid_(grid), material_(material) {
+  grid_.Validate();
+  if (material_.kappa != 0.0) {
+    // The coupled normal–tangential iteration for dissimilar materials is not implemented;
+    // refusing is better than silently ignoring the coupling.
+    throw std::invalid_argument(
+        "steady rolling with dissimilar materials (K != 0) is not supported yet");
+  }
+  extended_ = std::make_unique<FftInfluenceOperator>(
+      Extended(grid_), material_,
+      std::vector<InfluenceComponent>{InfluenceComponent::kXX, InfluenceComponent::kYY,
+                                      InfluenceComponent::kXY});
+  const Grid ext = Extended(grid_);
+  xx_ = std::make_unique<InfluenceCoefficients>(ext, material_, InfluenceComponent::kXX);
+  yy_ = std::make_unique<InfluenceCoefficients>(ext, material_, InfluenceComponent::kYY);
+  xy_ = std::make_unique<InfluenceCoefficients>(ext, material_, InfluenceComponent::kXY);
+}
+
+TangentialSummary SolveTangential(const SteadyRollingOperator& op, const TangentialProblem& pb,
+                                  const TangentialOptions& options, TangentialWorkspace& ws,
+                                  TangentialSolution& sol) {
+  Validate(op, pb);
+  const Grid& g = op.grid();
+  const int nx = g.nx, ny = g.ny, nxe = nx + 1;
+  const std::size_t n = g.size(), ne = static_cast<std::size_t>(nxe) * ny;
+  const FftInfluenceOperator& ext = op.extended();
+  if (!ext.Fits(ws.convolution)) ws.convolution = ext.MakeWorkspace();
+  ws.px_ext.assign(ne, 0.0);
+  ws.py_ext.assign(ne, 0.0);
+  ws.ux_ext.resize(ne);
+  ws.uy_ext.resize(ne);
+  sol.px.assign(n, 0.0);
+  sol.py.assign(n, 0.0);
+  sol.sx.assign(n, 0.0);
+  sol.sy.assign(n, 0.0);
+  sol.state.assign(n, ElementState::kExterior);
+
+  auto mu_at = [&](std::size_t i) { return pb.mu.size() == 1 ? pb.mu[0] : pb.mu[i]; };
+  double max_bound = 0.0;
+  for (std::size_t i = 0; i < n; ++i) max_bound = std::max(max_bound, mu_at(i) * pb.pressure[i]);
+
+  // Local stiffness: s_I changes with p_I through u_I (coefficient at offset 0) and through
+  // u'_I = u_{I+1} (offset +1): k = (A(0) − A(dx))/dx.
+  const double inv_dq = 1.0 / g.dx;
+
+  TangentialSummary summary;
+  if (max_bound == 0.0) {
+    // No contact or μ = 0: zero tractions; the slip is then the rigid slip.
+    sol.sx = pb.wx;
+    sol.sy = pb.wy;
+    summary.status = max_bound == 0.0 && std::any_of(pb.pressure.begin(), pb.pressure.end(),
+                                                     [](double p) { return p > 0.0; })
+                         ? SolverStatus::kConverged
+                         : SolverStatus::kNoContact;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (pb.pressure[i] > 0.0) {
+        sol.state[i] = ElementState::kSlip;
+      }
+    }
+    sol.fx = sol.fy = sol.mz = 0.0;
+    sol.n_adhesion = 0;
+    sol.n_slip = static_cast<int>(
+        std::count(sol.state.begin(), sol.state.end(), ElementState::kSlip));
+    return summary;
+  }
+
+  auto ext_index = [nxe](int i, int j) {
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(nxe) * j;
+  };
+  // Bounding box of the contact (plus the column upstream of it, where u' is read).
+  int box_i0 = nx, box_i1 = -1, box_j0 = ny, box_j1 = -1;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (pb.pressure[g.index(i, j)] > 0.0) {
+        box_i0 = std::min(box_i0, i);
+        box_i1 = std::max(box_i1, i + 1);
+        box_j0 = std::min(box_j0, j);
+        box_j1 = std::max(box_j1, j);
+      }
+    }
+  }
+  const InfluenceCoefficients& axx = op.xx();
+  const InfluenceCoefficients& ayy = op.yy();
+  const InfluenceCoefficients& axy = op.xy();
+
+  const int b = box_i0;  // first column of the cumulative parametrisation
+  const int bw = box_i1 - box_i0 + 1;
+  ws.sx_box.resize(static_cast<std::size_t>(bw) * (box_j1 - box_j0 + 1));
+  ws.sy_box.resize(ws.sx_box.size());
+  auto box_index = [&](int i, int j) {
+    return static_cast<std::size_t>(i - box_i0) + static_cast<std::size_t>(bw) * (j - box_j0);
+  };
+
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                        ws.convolution);
+    for (int l = box_j0; l <= box_j1; ++l) {
+      for (int k = box_i0; k < box_i1; ++k) {
+        const std::size_t E = ext_index(k, l);
+        const std::size_t I = g.index(k, l);
+        ws.sx_box[box_index(k, l)] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
+        ws.sy_box[box_index(k, l)] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+      }
+    }
+    double max_change = 0.0;
+    for (int j = box_j0; j <= box_j1; ++j) {
+      for (int i = box_i1 - 1; i >= box_i0; --i) {
+        const std::size_t I = g.index(i, j);
+        const std::size_t E = ext_index(i, j);
+        const double old_px = ws.px_ext[E], old_py = ws.py_ext[E];
+        // The update shifts the tractions of elements b..i of this row alike (a change of the
+        // difference d_i = p_i − p_(i+1)); the elements downstream are solved after this one.
+        // Its effect on the own slip: (A(0) − A(i − b + 1))/δq.
+        const double kx = (axx.at(0, 0) - axx.at(i - b + 1, 0)) * inv_dq;
+        const double ky = (ayy.at(0, 0) - ayy.at(i - b + 1, 0)) * inv_dq;
+        double new_px = 0.0, new_py = 0.0;
+        if (pb.pressure[I] > 0.0) {
+          const double sx = ws.sx_box[box_index(i, j)], sy = ws.sy_box[box_index(i, j)];
+          const LocalResult r =
+              SolveLocal(sx - kx * old_px, sy - ky * old_py, kx, ky, mu_at(I) * pb.pressure[I]);
+          new_px = r.px;
+          new_py = r.py;
+          sol.state[I] = r.slip ? ElementState::kSlip : ElementState::kAdhesion;
+        }
+        const double dpx = new_px - old_px, dpy = new_py - old_py;
+        if (dpx == 0.0 && dpy == 0.0) continue;
+        max_change = std::max(max_change, std::hypot(dpx, dpy));
+        for (int m = b; m <= i; ++m) {
+          ws.px_ext[ext_index(m, j)] += dpx;
+          ws.py_ext[ext_index(m, j)] += dpy;
+        }
+        // Slip change at (k, l): Σ_(m=b..i) [A(k−m) − A(k+1−m)]·Δ/δq = [A(k−i) − A(k−b+1)]·Δ/δq.
+        for (int l = box_j0; l <= box_j1; ++l) {
+          for (int k = box_i0; k < box_i1; ++k) {
+            const int dj = l - j;
+            const double cxx = (axx.at(k - i, dj) - axx.at(k - b + 1, dj)) * inv_dq;
+            const double cyy = (ayy.at(k - i, dj) - ayy.at(k - b + 1, dj)) * inv_dq;
+            const double cxy = (axy.at(k - i, dj) - axy.at(k - b + 1, dj)) * inv_dq;
+            ws.sx_box[box_index(k, l)] += cxx * dpx + cxy * dpy;
+            ws.sy_box[box_index(k, l)] += cxy * dpx + cyy * dpy;
+          }
+        }
+      }
+    }
+    summary.iterations = it;
+    summary.residual = max_change / max_bound;
+    if (summary.residual < options.tolerance) {
+      summary.status = SolverStatus::kConverged;
+      break;
+    }
+  }
+
+  // Final slip from a fresh product, and the totals.
+  ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                      ws.convolution);
+  const double area = g.element_area();
+  sol.fx = sol.fy = sol.mz = 0.0;
+  sol.n_adhesion = sol.n_slip = 0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t I = g.index(i, j);
+      const std::size_t E = ext_index(i, j);
+      sol.px[I] = ws.px_ext[E];
+      sol.py[I] = ws.py_ext[E];
+      sol.sx[I] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
+      sol.sy[I] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+      sol.fx += sol.px[I] * area;
+      sol.fy += sol.py[I] * area;
+      sol.mz += (g.x(i) * sol.py[I] - g.y(j) * sol.px[I]) * area;
+      sol.n_adhesion += sol.state[I] == ElementState::kAdhesion;
+      sol.n_slip += sol.state[I] == ElementState::kSlip;
+    }
+  }
+  return summary;
+}
+
+}  // namespace wrc

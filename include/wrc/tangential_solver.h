@@ -1,0 +1,98 @@
+#pragma once
+/// @file tangential_solver.h
+/// Steady-rolling tangential contact with Coulomb friction (paper Eq. 11–12): find tangential
+/// tractions p_t on the contact area with actual slip s = w + (u − u')/δq, |p_t| <= μ·p_n,
+/// s = 0 where |p_t| < μ·p_n (adhesion) and p_t = −μ·p_n·s/|s| where it slips.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "wrc/influence_operator.h"
+#include "wrc/solver_status.h"
+
+namespace wrc {
+
+/// Element states of the tangential solution (CONTACT's IGS numbering).
+enum class ElementState : std::uint8_t { kExterior = 0, kAdhesion = 1, kSlip = 2 };
+
+/// The steady-rolling slip operator of one contact grid, rolling in +x with the leading edge at
+/// x > 0 (material flows towards −x): s_I = w_I + (u_I − u'_I)/δq, where u'_I = u(x_I + δq) is
+/// the displacement the particle had one step upstream. δq = dx, so u' is u one element
+/// upstream; the influence coefficients are prepared on the grid extended by one column at the
+/// leading edge so that u' of the first column is exact, not truncated.
+class SteadyRollingOperator {
+ public:
+  SteadyRollingOperator(const Grid& grid, const CombinedElasticity& material);
+  const Grid& grid() const { return grid_; }
+  const CombinedElasticity& material() const { return material_; }
+  const FftInfluenceOperator& extended() const { return *extended_; }
+  /// Influence coefficients on the extended grid (offsets |di| <= nx, |dj| < ny).
+  const InfluenceCoefficients& xx() const { return *xx_; }
+  const InfluenceCoefficients& yy() const { return *yy_; }
+  const InfluenceCoefficients& xy() const { return *xy_; }
+
+ private:
+  Grid grid_;
+  CombinedElasticity material_;
+  std::unique_ptr<FftInfluenceOperator> extended_;
+  std::unique_ptr<InfluenceCoefficients> xx_, yy_, xy_;
+};
+
+/// Options of the tangential solver.
+struct TangentialOptions {
+  /// Stop when the largest traction change in a sweep is below tolerance·max(μ·p_n). CONTACT
+  /// stops at EPS = 1e-6 in a comparable relative measure; 1e-9 keeps the total forces exact
+  /// to far below CONTACT's four printed digits at little extra cost.
+  double tolerance = 1e-9;
+  int max_iterations = 5000;
+};
+
+/// Input of a tangential solve on the operator's grid.
+struct TangentialProblem {
+  std::vector<double> pressure;  ///< Normal pressure p_n per element, N/mm² (>= 0).
+  std::vector<double> mu;        ///< Coefficient of friction per element (size 1: everywhere).
+  std::vector<double> wx, wy;    ///< Relative rigid slip per element, -.
+};
+
+/// Result of a tangential solve.
+struct TangentialSolution {
+  std::vector<double> px, py;  ///< Tangential tractions on body 1, N/mm².
+  std::vector<double> sx, sy;  ///< Relative actual slip, -.
+  std::vector<ElementState> state;
+  double fx = 0.0, fy = 0.0;  ///< Total tangential forces, N.
+  double mz = 0.0;            ///< Σ (x·p_y − y·p_x)·dA about the grid origin, N·mm.
+  int n_adhesion = 0;
+  int n_slip = 0;
+};
+
+struct TangentialSummary {
+  SolverStatus status = SolverStatus::kNotConverged;
+  int iterations = 0;
+  double residual = 0.0;
+};
+
+/// Caller-owned scratch memory.
+struct TangentialWorkspace {
+  ConvolutionWorkspace convolution;
+  std::vector<double> px_ext, py_ext, ux_ext, uy_ext, sx_box, sy_box;
+};
+
+/// Solves the steady-rolling problem for identical (quasi-identical) materials; the normal
+/// pressure is given. Method: Gauss–Seidel over the elements in the order of Kalker's SteadyGS
+/// (row by row, each row from the leading edge downstream, following the material), in the
+/// variables d_i = p_i − p_(i+1), the traction differences along the row: updating element i
+/// shifts the tractions of all elements downstream of it in its row alike. In these variables
+/// the steady-rolling slip operator s = w + (u − u')/δq becomes s = w + A·d/δq (the rolling
+/// derivative moves from u onto p), whose diagonal dominates; Gauss–Seidel on p itself cycles,
+/// because its upstream coupling equals minus its own stiffness. Every element update solves
+/// its local Coulomb problem exactly (adhesion, or slip with the traction on the bound, opposite
+/// to the slip), and the slip of the contact's bounding box is corrected after each update;
+/// once per sweep it is recomputed by FFT to stop round-off drift. Throws
+/// std::invalid_argument for inconsistent sizes or non-finite input.
+TangentialSummary SolveTangential(const SteadyRollingOperator& op,
+                                  const TangentialProblem& problem,
+                                  const TangentialOptions& options, TangentialWorkspace& workspace,
+                                  TangentialSolution& solution);
+
+}  // namespace wrc

@@ -1,0 +1,14 @@
+#pragma once
+// Subcommands of the `wrc` command-line tool.
+
+#include <CLI/CLI.hpp>
+
+namespace wrc::cli {
+
+/// Exit codes (SPEC §3): 0 ok or no contact, 2 bad input, 3 not converged.
+enum ExitCode : int { kExitOk = 0, kExitGateFailed = 1, kExitBadInput = 2, kExitNotConverged = 3 };
+
+/// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.
+void AddSolveCommand(CLI::App& app, int* exit_code);
+
+}  // namespace wrc::cli

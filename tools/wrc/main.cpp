@@ -1,0 +1,23 @@
+// wrc: wheel–rail contact. One binary, one subcommand per job.
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "tools/wrc/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"wrc: wheel-rail contact solver, table generator and verifier"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "wrc 0.1.0");
+  int exit_code = wrc::cli::kExitOk;
+  wrc::cli::AddSolveCommand(app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : wrc::cli::kExitBadInput;
+  }
+  return exit_code;
+}
