@@ -1,0 +1,529 @@
+// Case files (SPEC §2): TOML to wrc::Case, with every name, type and value checked so that a
+// typo or an impossible value is reported with file, line and key instead of being ignored.
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "core/io/case_parser.h"
+#include "wrc/case.h"
+#include "wrc/errors.h"
+
+namespace wrc {
+namespace io {
+namespace {
+
+/// Which problem types a section or key belongs to.
+enum class Applies { kBoth, kWheelRail, kHalfspace };
+
+struct KeySchema {
+  std::string_view key;
+  Applies applies;
+};
+
+struct SectionSchema {
+  std::string_view name;
+  Applies applies;
+  std::vector<KeySchema> keys;
+};
+
+/// Every section and key of SPEC §2 and §2.1. Anything else in a file is a mistake.
+const std::vector<SectionSchema>& CaseSchema() {
+  constexpr Applies kBoth = Applies::kBoth;
+  constexpr Applies kWR = Applies::kWheelRail;
+  constexpr Applies kHS = Applies::kHalfspace;
+  static const std::vector<SectionSchema> schema = {
+      {"problem", kBoth, {{"type", kBoth}}},
+      {"rail", kWR, {{"profile", kWR}, {"mirror_y", kWR}}},
+      {"wheel", kWR, {{"profile", kWR}, {"mirror_y", kWR}}},
+      {"track",
+       kWR,
+       {{"gauge_height", kWR},
+        {"gauge_width", kWR},
+        {"cant", kWR},
+        {"rail_y", kWR},
+        {"rail_z", kWR}}},
+      {"wheelset",
+       kWR,
+       {{"side", kWR},
+        {"flange_back_distance", kWR},
+        {"flange_back_position", kWR},
+        {"nominal_radius", kWR}}},
+      {"material", kBoth, {{"poisson", kBoth}, {"shear_modulus", kBoth}}},
+      {"friction", kBoth, {{"mu", kBoth}, {"alpha_deg", kBoth}}},
+      {"grid", kBoth, {{"dx", kBoth}, {"ds", kWR}, {"dy", kHS}, {"x", kHS}, {"y", kHS}}},
+      {"method",
+       kWR,
+       {{"reference", kWR},
+        {"position", kWR},
+        {"angle", kWR},
+        {"weights", kWR},
+        {"combine_distance", kWR}}},
+      {"effects", kBoth, {{"tangential", kBoth}, {"midplane_correction", kWR}}},
+      {"geometry", kHS, {{"a1", kHS}, {"b1", kHS}}},
+      {"state",
+       kBoth,
+       {{"y", kWR},
+        {"z", kWR},
+        {"fz", kWR},
+        {"roll", kWR},
+        {"yaw", kWR},
+        {"velocity", kWR},
+        {"omega", kWR},
+        {"spin", kWR},
+        {"vy", kWR},
+        {"vroll", kWR},
+        {"vyaw", kWR},
+        {"fn", kHS},
+        {"approach", kHS},
+        {"cksi", kHS},
+        {"ceta", kHS},
+        {"cphi", kHS}}},
+  };
+  return schema;
+}
+
+bool AppliesTo(Applies applies, CaseType type) {
+  return applies == Applies::kBoth ||
+         (applies == Applies::kWheelRail) == (type == CaseType::kWheelRail);
+}
+
+std::string TypeName(CaseType type) {
+  return type == CaseType::kWheelRail ? "wheel-rail" : "halfspace";
+}
+
+std::string NotUsedBy(CaseType type) {
+  return "not used by problem.type = \"" + TypeName(type) + "\"";
+}
+
+std::string JoinNames(const std::vector<std::string_view>& names) {
+  std::string joined;
+  for (std::string_view name : names) {
+    if (!joined.empty()) joined += ", ";
+    joined += name;
+  }
+  return joined;
+}
+
+/// Rejects unknown sections and keys, and those of the other problem type, before anything is
+/// read: a misspelt key would otherwise silently fall back to its default.
+void CheckNames(const toml::table& root, const SourceFile& file, CaseType type,
+                bool allow_table_section) {
+  std::vector<std::string_view> section_names;
+  for (const SectionSchema& section : CaseSchema()) {
+    if (AppliesTo(section.applies, type)) section_names.push_back(section.name);
+  }
+  if (allow_table_section) section_names.push_back("table");
+
+  for (const auto& [key, node] : root) {
+    const std::string_view name = key.str();
+    if (name == "table") {
+      if (allow_table_section) continue;
+      file.FailAt(node.source().begin, "[table]",
+                  "only scene files (wrc generate) have a [table] section, not case files");
+    }
+    const auto schema = std::find_if(CaseSchema().begin(), CaseSchema().end(),
+                                     [name](const SectionSchema& s) { return s.name == name; });
+    if (schema == CaseSchema().end()) {
+      if (!node.is_table()) {
+        // A key outside any section: say which section it belongs in, if any.
+        for (const SectionSchema& section : CaseSchema()) {
+          for (const KeySchema& known : section.keys) {
+            if (known.key == name && AppliesTo(known.applies, type)) {
+              file.Fail(
+                  &node, name,
+                  "keys belong in a section: put it under [" + std::string(section.name) + "]");
+            }
+          }
+        }
+        file.Fail(&node, name, "unknown key outside any section");
+      }
+      const std::string suggestion = SuggestName(name, section_names);
+      std::string problem = "unknown section";
+      if (!suggestion.empty()) problem += " (did you mean [" + suggestion + "]?)";
+      problem += "; allowed sections: " + JoinNames(section_names);
+      file.FailAt(node.source().begin, "[" + std::string(name) + "]", problem);
+    }
+    if (!AppliesTo(schema->applies, type)) {
+      file.FailAt(node.source().begin, "[" + std::string(name) + "]", NotUsedBy(type));
+    }
+    const toml::table* section = node.as_table();
+    if (section == nullptr) {
+      file.Fail(&node, name, "must be a section [" + std::string(name) + "]");
+    }
+
+    std::vector<std::string_view> key_names;
+    for (const KeySchema& known : schema->keys) {
+      if (AppliesTo(known.applies, type)) key_names.push_back(known.key);
+    }
+    for (const auto& [inner_key, inner_node] : *section) {
+      const std::string_view inner_name = inner_key.str();
+      const std::string path = std::string(name) + "." + std::string(inner_name);
+      const auto known =
+          std::find_if(schema->keys.begin(), schema->keys.end(),
+                       [inner_name](const KeySchema& k) { return k.key == inner_name; });
+      if (known == schema->keys.end()) {
+        const std::string suggestion = SuggestName(inner_name, key_names);
+        std::string problem = "unknown key";
+        if (!suggestion.empty()) {
+          problem += " (did you mean " + std::string(name) + "." + suggestion + "?)";
+        }
+        problem += "; allowed keys in [" + std::string(name) + "]: " + JoinNames(key_names);
+        file.Fail(&inner_node, path, problem);
+      }
+      if (!AppliesTo(known->applies, type)) {
+        std::string problem = NotUsedBy(type);
+        if (name == "grid" && inner_name == "ds") problem += " (half-space grids use grid.dy)";
+        if (name == "grid" && inner_name == "dy") problem += " (wheel-rail grids use grid.ds)";
+        file.Fail(&inner_node, path, problem);
+      }
+    }
+  }
+}
+
+// Small checks that report the offending key with its value.
+void RequirePositive(const Section& section, std::string_view key, double value) {
+  if (!(value > 0.0)) section.Fail(key, "must be positive");
+}
+void RequireNonNegative(const Section& section, std::string_view key, double value) {
+  if (value < 0.0) section.Fail(key, "must not be negative");
+}
+
+ProfileSource ReadProfile(const Section& section, const std::filesystem::path& base_dir,
+                          bool check_exists) {
+  ProfileSource profile;
+  const std::optional<std::string> written = section.OptionalString("profile");
+  if (!written) {
+    section.FailMissing("profile",
+                        "wheel-rail problems need the " + section.name() + " profile file");
+  }
+  if (written->empty()) section.Fail("profile", "must name a profile file");
+  profile.path_as_written = *written;
+  const std::filesystem::path as_given(*written);
+  profile.path = as_given.is_absolute() ? as_given : (base_dir / as_given).lexically_normal();
+  if (check_exists) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(profile.path, error)) {
+      section.Fail("profile", "file not found: " + profile.path.string());
+    }
+  }
+  profile.mirror_y = section.Bool("mirror_y", false);
+  return profile;
+}
+
+Track ReadTrack(const Section& section) {
+  Track track;
+  track.gauge_height = section.Number("gauge_height", track.gauge_height);
+  track.cant = section.Number("cant", track.cant);
+  if (track.absolute_placement()) {
+    // gauge_width would be silently ignored: say so rather than surprise the user.
+    if (section.Has("gauge_width")) {
+      section.Fail("gauge_width",
+                   "not used with absolute placement (track.gauge_height <= 0); the rail is "
+                   "placed by track.rail_y and track.rail_z");
+    }
+    track.rail_y = section.Number("rail_y", track.rail_y);
+    track.rail_z = section.Number("rail_z", track.rail_z);
+  } else {
+    for (std::string_view key : {"rail_y", "rail_z"}) {
+      if (section.Has(key)) {
+        section.Fail(key,
+                     "only used with absolute placement (track.gauge_height <= 0); with "
+                     "gauge_height > 0 the rail is placed by gauge_width and cant");
+      }
+    }
+    track.gauge_width = section.Number("gauge_width", track.gauge_width);
+    RequirePositive(section, "gauge_width", track.gauge_width);
+  }
+  return track;
+}
+
+Wheelset ReadWheelset(const Section& section) {
+  Wheelset wheelset;
+  wheelset.side = section.Choice("side", {{"right", WheelSide::kRight}, {"left", WheelSide::kLeft}},
+                                 wheelset.side);
+  wheelset.flange_back_distance =
+      section.Number("flange_back_distance", wheelset.flange_back_distance);
+  wheelset.flange_back_position =
+      section.Number("flange_back_position", wheelset.flange_back_position);
+  wheelset.nominal_radius = section.Number("nominal_radius", wheelset.nominal_radius);
+  RequirePositive(section, "nominal_radius", wheelset.nominal_radius);
+  return wheelset;
+}
+
+/// `key = value` for both bodies or `key = [rail, wheel]`.
+std::vector<NumberAt> ReadPerBody(const Section& section, std::string_view key) {
+  std::vector<NumberAt> values = section.NumberOrArray(key);
+  if (values.empty()) return values;
+  if (!section.Find(key)->is_array()) return {values[0], values[0]};
+  if (values.size() != 2) {
+    section.Fail(key, "must be one number for both bodies or an array [rail, wheel]");
+  }
+  return values;
+}
+
+void ReadMaterials(const Section& section, Case& result) {
+  const std::vector<NumberAt> poisson = ReadPerBody(section, "poisson");
+  for (const NumberAt& value : poisson) {
+    if (value.value < 0.0 || value.value >= 0.5) {
+      section.file().Fail(value.node, value.path, "must be in [0, 0.5)");
+    }
+  }
+  const std::vector<NumberAt> modulus = ReadPerBody(section, "shear_modulus");
+  for (const NumberAt& value : modulus) {
+    if (!(value.value > 0.0)) section.file().Fail(value.node, value.path, "must be positive");
+  }
+  // Body 1 is the rail, body 2 the wheel.
+  if (!poisson.empty()) {
+    result.rail_material.poisson = poisson[0].value;
+    result.wheel_material.poisson = poisson[1].value;
+  }
+  if (!modulus.empty()) {
+    result.rail_material.shear_modulus = modulus[0].value;
+    result.wheel_material.shear_modulus = modulus[1].value;
+  }
+}
+
+Friction ReadFriction(const Section& section) {
+  Friction friction;
+  const toml::node* mu_node = section.Find("mu");
+  const bool varying = section.Has("alpha_deg");
+  if (mu_node == nullptr) {
+    if (varying) section.FailMissing("mu", "friction.alpha_deg needs an array mu of equal length");
+    return friction;
+  }
+  if (!varying) {
+    if (mu_node->is_array()) {
+      section.Fail("mu",
+                   "an array of mu needs friction.alpha_deg (one angle per value); for "
+                   "constant friction give one number");
+    }
+    const double mu = ReadNumber(section.file(), *mu_node, section.Path("mu"));
+    RequireNonNegative(section, "mu", mu);
+    return Friction::Constant(mu);
+  }
+  if (!mu_node->is_array()) {
+    section.Fail("mu", "must be an array with one value per friction.alpha_deg");
+  }
+  const std::vector<NumberAt> alpha = section.NumberArray("alpha_deg");
+  const std::vector<NumberAt> mu = section.NumberArray("mu");
+  if (alpha.size() != mu.size()) {
+    section.Fail("mu", "has " + std::to_string(mu.size()) + " values but friction.alpha_deg has " +
+                           std::to_string(alpha.size()) + "; they must have the same length");
+  }
+  for (std::size_t i = 1; i < alpha.size(); ++i) {
+    if (!(alpha[i].value > alpha[i - 1].value)) {
+      section.file().Fail(alpha[i].node, alpha[i].path,
+                          "friction.alpha_deg must be strictly ascending (previous value " +
+                              DescribeValue(*alpha[i - 1].node) + ")");
+    }
+  }
+  friction.alpha_deg.clear();
+  friction.mu.clear();
+  for (std::size_t i = 0; i < mu.size(); ++i) {
+    if (mu[i].value < 0.0) section.file().Fail(mu[i].node, mu[i].path, "must not be negative");
+    friction.alpha_deg.push_back(alpha[i].value);
+    friction.mu.push_back(mu[i].value);
+  }
+  return friction;
+}
+
+Interval ReadInterval(const Section& section, std::string_view key) {
+  const std::vector<NumberAt> bounds = section.NumberArray(key);
+  if (bounds.size() != 2) section.Fail(key, "must be an array [min, max]");
+  if (!(bounds[0].value < bounds[1].value)) section.Fail(key, "min must be less than max");
+  return Interval{bounds[0].value, bounds[1].value};
+}
+
+GridSettings ReadGrid(const Section& section, CaseType type) {
+  GridSettings grid;
+  const std::string why = "the grid must be given for " + TypeName(type) + " problems";
+  grid.dx = section.RequiredNumber("dx", why);
+  RequirePositive(section, "dx", grid.dx);
+  if (type == CaseType::kWheelRail) {
+    grid.ds = section.RequiredNumber("ds", why);
+    RequirePositive(section, "ds", grid.ds);
+  } else {
+    grid.dy = section.RequiredNumber("dy", why);
+    RequirePositive(section, "dy", grid.dy);
+    if (section.Has("x")) grid.x = ReadInterval(section, "x");
+    if (section.Has("y")) grid.y = ReadInterval(section, "y");
+  }
+  return grid;
+}
+
+Method ReadMethod(const Section& section) {
+  Method method;
+  method.reference = section.Choice(
+      "reference", {{"curved", ReferenceSurface::kCurved}, {"planar", ReferenceSurface::kPlanar}},
+      method.reference);
+  method.position = section.Choice(
+      "position",
+      {{"initial", ReferencePosition::kInitial}, {"weighted", ReferencePosition::kWeighted}},
+      method.position);
+  method.angle = section.Choice(
+      "angle", {{"sampled", ReferenceAngle::kSampled}, {"weighted", ReferenceAngle::kWeighted}},
+      method.angle);
+  method.weights = section.Choice(
+      "weights",
+      {{"linear", ReferenceWeights::kLinear}, {"quadratic", ReferenceWeights::kQuadratic}},
+      method.weights);
+  method.combine_distance = section.Number("combine_distance", method.combine_distance);
+  RequireNonNegative(section, "combine_distance", method.combine_distance);
+  return method;
+}
+
+Effects ReadEffects(const Section& section) {
+  Effects effects;
+  effects.tangential = section.Bool("tangential", effects.tangential);
+  effects.midplane_correction = section.Bool("midplane_correction", effects.midplane_correction);
+  return effects;
+}
+
+HalfspaceGeometry ReadGeometry(const Section& section) {
+  HalfspaceGeometry geometry;
+  const char* why = "half-space problems need [geometry] a1 and b1";
+  geometry.a1 = section.RequiredNumber("a1", why);
+  RequirePositive(section, "a1", geometry.a1);
+  geometry.b1 = section.RequiredNumber("b1", why);
+  RequirePositive(section, "b1", geometry.b1);
+  return geometry;
+}
+
+WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset,
+                                const CaseParseOptions& options) {
+  WheelsetState state;
+  state.y = section.Number("y", state.y);
+  state.z = section.OptionalNumber("z");
+  state.fz = section.OptionalNumber("fz");
+  if (state.z && state.fz) section.Fail("fz", "give either state.z or state.fz, not both");
+  const bool vertical_on_axis = options.axis_names.count("z") + options.axis_names.count("fz") > 0;
+  if (!state.z && !state.fz && !vertical_on_axis) {
+    section.file().FailAt(section.position(), "state.z",
+                          "missing: give the vertical position state.z (mm) or the vertical "
+                          "force state.fz (N)");
+  }
+  if (state.fz) RequirePositive(section, "fz", *state.fz);
+  state.roll = section.Number("roll", state.roll);
+  state.yaw = section.Number("yaw", state.yaw);
+  state.velocity = section.Number("velocity", state.velocity);
+  state.vy = section.Number("vy", state.vy);
+  state.vroll = section.Number("vroll", state.vroll);
+  state.vyaw = section.Number("vyaw", state.vyaw);
+
+  const std::optional<double> omega = section.OptionalNumber("omega");
+  state.spin = section.OptionalNumber("spin");
+  if (omega && state.spin) section.Fail("spin", "give either state.omega or state.spin, not both");
+  if (omega) state.omega = *omega;
+  if (state.spin) {
+    state.omega = OmegaFromSpin(*state.spin, state.velocity, wheelset.nominal_radius);
+  }
+  return state;
+}
+
+HalfspaceState ReadHalfspaceState(const Section& section) {
+  HalfspaceState state;
+  state.fn = section.OptionalNumber("fn");
+  state.approach = section.OptionalNumber("approach");
+  if (state.fn && state.approach) {
+    section.Fail("approach", "give either state.fn or state.approach, not both");
+  }
+  if (!state.fn && !state.approach) {
+    section.file().FailAt(section.position(), "state.fn",
+                          "missing: give the normal force state.fn (N) or the approach "
+                          "state.approach (mm)");
+  }
+  if (state.fn) RequirePositive(section, "fn", *state.fn);
+  state.cksi = section.Number("cksi", state.cksi);
+  state.ceta = section.Number("ceta", state.ceta);
+  state.cphi = section.Number("cphi", state.cphi);
+  return state;
+}
+
+}  // namespace
+
+CaseType ReadCaseType(const toml::table& root, const SourceFile& file) {
+  const Section problem(file, root, "problem");
+  return problem.Choice("type",
+                        {{"wheel-rail", CaseType::kWheelRail}, {"halfspace", CaseType::kHalfspace}},
+                        CaseType::kWheelRail);
+}
+
+Case ReadCase(const toml::table& root, const SourceFile& file,
+              const std::filesystem::path& base_dir, const CaseParseOptions& options) {
+  Case result;
+  result.type = ReadCaseType(root, file);
+  CheckNames(root, file, result.type, options.allow_table_section);
+  result.source_name = file.name();
+  result.base_dir = base_dir;
+
+  ReadMaterials(Section(file, root, "material"), result);
+  result.friction = ReadFriction(Section(file, root, "friction"));
+  result.grid = ReadGrid(Section(file, root, "grid"), result.type);
+  result.effects = ReadEffects(Section(file, root, "effects"));
+
+  if (result.type == CaseType::kWheelRail) {
+    result.rail = ReadProfile(Section(file, root, "rail"), base_dir, options.check_files_exist);
+    result.wheel = ReadProfile(Section(file, root, "wheel"), base_dir, options.check_files_exist);
+    result.track = ReadTrack(Section(file, root, "track"));
+    result.wheelset = ReadWheelset(Section(file, root, "wheelset"));
+    result.method = ReadMethod(Section(file, root, "method"));
+    result.state = ReadWheelsetState(Section(file, root, "state"), result.wheelset, options);
+  } else {
+    result.geometry = ReadGeometry(Section(file, root, "geometry"));
+    result.halfspace_state = ReadHalfspaceState(Section(file, root, "state"));
+  }
+  return result;
+}
+
+std::string ReadTextFile(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path.string() + ": is a directory, not a file");
+  }
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw InputError(path.string() + ": cannot open file");
+  std::ostringstream contents;
+  contents << stream.rdbuf();
+  if (stream.bad()) throw InputError(path.string() + ": cannot read file");
+  return contents.str();
+}
+
+}  // namespace io
+
+double Friction::MuAt(double alpha_rad) const {
+  if (is_constant() || mu.size() == 1) return mu.front();
+  constexpr double kDegreesPerRadian = 57.29577951308232;
+  const double alpha = alpha_rad * kDegreesPerRadian;
+  if (alpha <= alpha_deg.front()) return mu.front();
+  if (alpha >= alpha_deg.back()) return mu.back();
+  // First angle above alpha; alpha lies in [alpha_deg[i-1], alpha_deg[i]).
+  const std::size_t i = static_cast<std::size_t>(
+      std::upper_bound(alpha_deg.begin(), alpha_deg.end(), alpha) - alpha_deg.begin());
+  const double t = (alpha - alpha_deg[i - 1]) / (alpha_deg[i] - alpha_deg[i - 1]);
+  return mu[i - 1] + t * (mu[i] - mu[i - 1]);
+}
+
+Case ParseCase(std::string_view toml_text, const std::filesystem::path& base_dir,
+               std::string_view display_name) {
+  const io::SourceFile file{std::string(display_name)};
+  const toml::table root = file.Parse(toml_text);
+  Case result = io::ReadCase(root, file, base_dir, io::CaseParseOptions{});
+  result.source_text = std::string(toml_text);
+  return result;
+}
+
+Case LoadCase(const std::filesystem::path& path) {
+  const std::string text = io::ReadTextFile(path);
+  const io::SourceFile file{path.string()};
+  const toml::table root = file.Parse(text);
+  io::CaseParseOptions options;
+  options.check_files_exist = true;
+  Case result = io::ReadCase(root, file, std::filesystem::absolute(path).parent_path(), options);
+  result.source_text = text;
+  return result;
+}
+
+}  // namespace wrc

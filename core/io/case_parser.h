@@ -1,0 +1,41 @@
+#pragma once
+/// @file case_parser.h
+/// Private: the case part of case and scene parsing, shared by case_io.cpp and scene_io.cpp.
+
+#include <filesystem>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include <toml++/toml.h>
+
+#include "core/io/toml_reader.h"
+#include "wrc/case.h"
+
+namespace wrc::io {
+
+/// How a document is read as a case.
+struct CaseParseOptions {
+  /// Check that profile files exist (only when reading from disk: a scene stored in a table
+  /// is re-read without its original files next to it).
+  bool check_files_exist = false;
+  /// Accept a [table] section (scenes); its contents are checked by the scene parser.
+  bool allow_table_section = false;
+  /// Quantities given by table axes instead of [state]: with a "z" or "fz" axis the state
+  /// needs neither z nor fz, with "spin" or "omega" neither omega nor spin. The case then
+  /// leaves those values unset (z/fz) or at their defaults (omega) for the caller to fill.
+  std::set<std::string, std::less<>> axis_names;
+};
+
+/// Reads the case sections of a parsed document: checks section and key names, types and
+/// values. Does not set source_text.
+Case ReadCase(const toml::table& root, const SourceFile& file,
+              const std::filesystem::path& base_dir, const CaseParseOptions& options);
+
+/// The problem type of a parsed document (`problem.type`, default wheel-rail).
+CaseType ReadCaseType(const toml::table& root, const SourceFile& file);
+
+/// Reads a file into a string; throws InputError naming the file when it cannot be read.
+std::string ReadTextFile(const std::filesystem::path& path);
+
+}  // namespace wrc::io

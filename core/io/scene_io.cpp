@@ -1,0 +1,452 @@
+// Scene files (SPEC §4.1): a case plus [table]. The table is checked completely before any
+// point is solved, because a mistake found hours into `wrc generate` wastes the whole run.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <tuple>
+
+#include "core/io/case_parser.h"
+#include "wrc/errors.h"
+#include "wrc/scene.h"
+
+namespace wrc {
+namespace io {
+namespace {
+
+// Guards against typos such as step = 1e-9 that would ask for billions of solves.
+constexpr std::size_t kMaxValuesPerAxis = 1'000'000;
+constexpr double kMaxPointCount = 1e9;
+
+// A step range includes `to` when it lies this close (relative to the step) to a grid value.
+constexpr double kStepEndTolerance = 1e-9;
+
+bool IsAxisName(std::string_view name) {
+  return std::find(std::begin(kSceneAxisNames), std::end(kSceneAxisNames), name) !=
+         std::end(kSceneAxisNames);
+}
+
+bool IsOutputName(std::string_view name) {
+  return std::find(std::begin(kSceneOutputNames), std::end(kSceneOutputNames), name) !=
+         std::end(kSceneOutputNames);
+}
+
+std::string QuotedList(const std::vector<std::string_view>& names) {
+  std::string joined;
+  for (std::string_view name : names) {
+    if (!joined.empty()) joined += ", ";
+    joined += "\"" + std::string(name) + "\"";
+  }
+  return joined;
+}
+
+/// Why `value` cannot be used for axis `name`; empty when it can. Shared by the file check
+/// and CaseAtPoint so that sampled points obey the same rules as the grid.
+std::string AxisValueProblem(std::string_view name, double value) {
+  if (!std::isfinite(value)) return "must be a finite number";
+  if (name == "mu" && value < 0.0) return "must not be negative";
+  if (name == "fz" && !(value > 0.0)) return "must be positive";
+  return {};
+}
+
+/// The [state] / [friction] keys that an axis replaces; giving both is ambiguous.
+std::vector<std::pair<std::string_view, std::string_view>> KeysReplacedByAxis(
+    std::string_view axis) {
+  if (axis == "z" || axis == "fz") return {{"state", "z"}, {"state", "fz"}};
+  if (axis == "spin" || axis == "omega") return {{"state", "spin"}, {"state", "omega"}};
+  if (axis == "mu") return {{"friction", "mu"}, {"friction", "alpha_deg"}};
+  return {{"state", axis}};
+}
+
+std::vector<double> ReadExplicitValues(const SourceFile& file, const toml::array& array,
+                                       std::string_view axis, const std::string& path) {
+  if (array.empty()) file.Fail(&array, path, "must list at least one value");
+  std::vector<double> values;
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const toml::node& element = *array.get(i);
+    const std::string element_path = path + "[" + std::to_string(i) + "]";
+    const double value = ReadNumber(file, element, element_path);
+    const std::string problem = AxisValueProblem(axis, value);
+    if (!problem.empty()) file.Fail(&element, element_path, problem);
+    if (!values.empty() && !(value > values.back())) {
+      file.Fail(&element, element_path,
+                "axis values must be strictly ascending (previous value " +
+                    DescribeValue(*array.get(i - 1)) + ")");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+std::vector<double> ReadRangeValues(const SourceFile& file, const toml::table& range,
+                                    std::string_view axis, const std::string& path) {
+  const std::vector<std::string_view> range_keys = {"from", "to", "step", "count"};
+  for (const auto& [key, node] : range) {
+    if (std::find(range_keys.begin(), range_keys.end(), key.str()) == range_keys.end()) {
+      std::string problem = "unknown key";
+      const std::string suggestion = SuggestName(key.str(), range_keys);
+      if (!suggestion.empty()) problem += " (did you mean " + path + "." + suggestion + "?)";
+      problem += "; a range has from, to and either step or count";
+      file.Fail(&node, path + "." + std::string(key.str()), problem);
+    }
+  }
+  const toml::node* from_node = range.get("from");
+  const toml::node* to_node = range.get("to");
+  const toml::node* step_node = range.get("step");
+  const toml::node* count_node = range.get("count");
+  if (from_node == nullptr) file.FailAt(range.source().begin, path + ".from", "missing");
+  if (to_node == nullptr) file.FailAt(range.source().begin, path + ".to", "missing");
+  if ((step_node == nullptr) == (count_node == nullptr)) {
+    file.FailAt(range.source().begin, path,
+                "give exactly one of " + path + ".step and " + path + ".count");
+  }
+  const double from = ReadNumber(file, *from_node, path + ".from");
+  const double to = ReadNumber(file, *to_node, path + ".to");
+  // Values ascend, so the limits decide whether all of them are allowed.
+  for (const auto& [limit, limit_node, limit_key] :
+       {std::tuple{from, from_node, ".from"}, std::tuple{to, to_node, ".to"}}) {
+    const std::string problem = AxisValueProblem(axis, limit);
+    if (!problem.empty()) file.Fail(limit_node, path + limit_key, problem);
+  }
+  if (to < from) {
+    file.Fail(to_node, path + ".to",
+              "empty range: must not be less than " + path +
+                  ".from = " + DescribeValue(*from_node) + " (axis values ascend)");
+  }
+
+  std::vector<double> values;
+  if (step_node != nullptr) {
+    const double step = ReadNumber(file, *step_node, path + ".step");
+    if (!(step > 0.0)) file.Fail(step_node, path + ".step", "must be positive");
+    const double intervals = (to - from) / step;
+    if (intervals + 1.0 > static_cast<double>(kMaxValuesPerAxis)) {
+      file.Fail(step_node, path + ".step",
+                "gives more than " + std::to_string(kMaxValuesPerAxis) + " values");
+    }
+    const auto last = static_cast<std::size_t>(std::floor(intervals + kStepEndTolerance));
+    for (std::size_t i = 0; i <= last; ++i) values.push_back(from + static_cast<double>(i) * step);
+    // `to` on the grid: store it exactly as written rather than with rounding noise.
+    if (std::abs(intervals - static_cast<double>(last)) <= kStepEndTolerance) values.back() = to;
+  } else {
+    const auto* count_integer = count_node->as_integer();
+    if (count_integer == nullptr) file.Fail(count_node, path + ".count", "must be an integer");
+    const std::int64_t count = count_integer->get();
+    if (count < 1) file.Fail(count_node, path + ".count", "must be at least 1");
+    if (count > static_cast<std::int64_t>(kMaxValuesPerAxis)) {
+      file.Fail(count_node, path + ".count",
+                "must not exceed " + std::to_string(kMaxValuesPerAxis));
+    }
+    if (count == 1 && to != from) {
+      file.Fail(count_node, path + ".count", "1 value needs from = to; use count >= 2 for a range");
+    }
+    if (count >= 2 && !(to > from)) {
+      file.Fail(count_node, path + ".count", "needs from < to for more than one value");
+    }
+    for (std::int64_t i = 0; i < count; ++i) {
+      values.push_back(count == 1 ? from
+                                  : from + (to - from) * static_cast<double>(i) /
+                                               static_cast<double>(count - 1));
+    }
+    values.back() = to;
+  }
+  // Rounding could, in principle, make two neighbours equal for a tiny step on large values.
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (!(values[i] > values[i - 1])) {
+      file.FailAt(range.source().begin, path, "step is too small to give distinct values");
+    }
+  }
+  return values;
+}
+
+std::vector<double> ReadAxisValues(const SourceFile& file, const Section& table,
+                                   std::string_view name) {
+  const std::string path = table.Path(name);
+  const toml::node* node = table.Find(name);
+  if (node == nullptr) {
+    table.FailMissing(name,
+                      "axis \"" + std::string(name) +
+                          "\" is listed in table.axes but has no values; give {from, to, step}, "
+                          "{from, to, count} or a list");
+  }
+  std::vector<double> values;
+  if (const toml::array* array = node->as_array()) {
+    values = ReadExplicitValues(file, *array, name, path);
+  } else if (const toml::table* range = node->as_table()) {
+    values = ReadRangeValues(file, *range, name, path);
+  } else {
+    file.Fail(node, path,
+              "must be {from = ..., to = ..., step = ...}, {from = ..., to = ..., count = ...} or "
+              "a list of values");
+  }
+  return values;
+}
+
+/// `table.axes`: a non-empty list of distinct axis names.
+std::vector<std::string> ReadAxisNames(const SourceFile& file, const Section& table) {
+  const toml::node* node = table.Find("axes");
+  if (node == nullptr) {
+    table.FailMissing("axes", "list the varied quantities, e.g. axes = [\"y\", \"yaw\"]");
+  }
+  const toml::array* array = node->as_array();
+  if (array == nullptr) file.Fail(node, "table.axes", "must be an array of axis names");
+  if (array->empty()) file.Fail(node, "table.axes", "must list at least one axis");
+  const std::vector<std::string_view> allowed(std::begin(kSceneAxisNames),
+                                              std::end(kSceneAxisNames));
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::node& element = *array->get(i);
+    const std::string path = "table.axes[" + std::to_string(i) + "]";
+    const auto* text = element.as_string();
+    if (text == nullptr) file.Fail(&element, path, "must be a string (an axis name)");
+    const std::string& name = text->get();
+    if (!IsAxisName(name)) {
+      std::string problem = "unknown axis";
+      const std::string suggestion = SuggestName(name, allowed);
+      if (!suggestion.empty()) problem += " (did you mean \"" + suggestion + "\"?)";
+      file.Fail(&element, path, problem + "; allowed axes: " + QuotedList(allowed));
+    }
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+      file.Fail(&element, path, "axis listed twice");
+    }
+    names.push_back(name);
+  }
+  const auto listed = [&names](std::string_view name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  if (listed("z") && listed("fz")) {
+    file.Fail(node, "table.axes",
+              "z and fz cannot both be axes: one is prescribed, the other solved for");
+  }
+  if (listed("spin") && listed("omega")) {
+    file.Fail(node, "table.axes", "spin and omega cannot both be axes: spin determines omega");
+  }
+  return names;
+}
+
+/// Rejects ranges for quantities that are not listed in table.axes: the user meant to vary
+/// them, and silently ignoring the range would produce the wrong table.
+void CheckUnlistedRanges(const Section& table, const std::vector<std::string>& axis_names) {
+  for (std::string_view name : kSceneAxisNames) {
+    if (table.Has(name) &&
+        std::find(axis_names.begin(), axis_names.end(), name) == axis_names.end()) {
+      table.Fail(name, "values given for an axis that is not listed in table.axes");
+    }
+  }
+}
+
+std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& table,
+                                     bool fz_prescribed) {
+  const toml::node* node = table.Find("outputs");
+  if (node == nullptr) return DefaultSceneOutputs(fz_prescribed);
+  const toml::array* array = node->as_array();
+  if (array == nullptr) file.Fail(node, "table.outputs", "must be an array of output names");
+  if (array->empty()) file.Fail(node, "table.outputs", "must list at least one output");
+  const std::vector<std::string_view> allowed(std::begin(kSceneOutputNames),
+                                              std::end(kSceneOutputNames));
+  std::vector<std::string> outputs;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::node& element = *array->get(i);
+    const std::string path = "table.outputs[" + std::to_string(i) + "]";
+    const auto* text = element.as_string();
+    if (text == nullptr) file.Fail(&element, path, "must be a string (an output name)");
+    const std::string& name = text->get();
+    if (!IsOutputName(name)) {
+      std::string problem = "unknown output";
+      const std::string suggestion = SuggestName(name, allowed);
+      if (!suggestion.empty()) problem += " (did you mean \"" + suggestion + "\"?)";
+      file.Fail(&element, path, problem + "; allowed outputs: " + QuotedList(allowed));
+    }
+    if (name == "z" && !fz_prescribed) {
+      file.Fail(&element, path,
+                "z is an output only when fz is prescribed (state.fz or an fz axis); here z "
+                "is an input");
+    }
+    if (std::find(outputs.begin(), outputs.end(), name) != outputs.end()) {
+      file.Fail(&element, path, "output listed twice");
+    }
+    outputs.push_back(name);
+  }
+  return outputs;
+}
+
+void ApplyAxisValue(Case& point, std::string_view axis, double value) {
+  WheelsetState& state = point.state;
+  if (axis == "y") {
+    state.y = value;
+  } else if (axis == "z") {
+    state.z = value;
+    state.fz.reset();
+  } else if (axis == "fz") {
+    state.fz = value;
+    state.z.reset();
+  } else if (axis == "roll") {
+    state.roll = value;
+  } else if (axis == "yaw") {
+    state.yaw = value;
+  } else if (axis == "spin") {
+    state.spin = value;
+    state.omega = OmegaFromSpin(value, state.velocity, point.wheelset.nominal_radius);
+  } else if (axis == "omega") {
+    state.omega = value;
+    state.spin.reset();
+  } else if (axis == "vy") {
+    state.vy = value;
+  } else if (axis == "vyaw") {
+    state.vyaw = value;
+  } else if (axis == "mu") {
+    point.friction = Friction::Constant(value);
+  } else {
+    throw std::invalid_argument("unknown scene axis \"" + std::string(axis) + "\"");
+  }
+}
+
+Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
+                const SourceFile& file, bool check_files_exist) {
+  const toml::table root = file.Parse(text);
+  if (ReadCaseType(root, file) != CaseType::kWheelRail) {
+    Section(file, root, "problem")
+        .Fail("type",
+              "scenes need wheel-rail problems (table axes and outputs are wheel-rail "
+              "quantities)");
+  }
+  const Section table(file, root, "table");
+  if (!table.exists()) {
+    file.FailAt(toml::source_position{0, 0}, "[table]",
+                "missing: a scene file needs a [table] section with axes (SPEC §4.1)");
+  }
+
+  const std::vector<std::string> axis_names = ReadAxisNames(file, table);
+  // Unknown keys in [table]: typos of axis names or of outputs.
+  std::vector<std::string_view> table_keys = {"axes", "outputs"};
+  for (std::string_view name : kSceneAxisNames) table_keys.push_back(name);
+  for (const auto& [key, node] : *root.get("table")->as_table()) {
+    const std::string_view name = key.str();
+    if (std::find(table_keys.begin(), table_keys.end(), name) != table_keys.end()) continue;
+    std::string problem = "unknown key";
+    const std::string suggestion = SuggestName(name, table_keys);
+    if (!suggestion.empty()) problem += " (did you mean table." + suggestion + "?)";
+    file.Fail(&node, "table." + std::string(name),
+              problem + "; [table] has axes, outputs and one range per axis");
+  }
+  CheckUnlistedRanges(table, axis_names);
+
+  // A quantity is either fixed in the case or varied on an axis, never both.
+  for (const std::string& axis : axis_names) {
+    for (const auto& [section_name, key] : KeysReplacedByAxis(axis)) {
+      const Section section(file, root, std::string(section_name));
+      if (section.Has(key)) {
+        section.Fail(key, "also varied by table axis \"" + axis +
+                              "\"; remove one of them (quantities on an axis come from the table)");
+      }
+    }
+  }
+
+  Scene scene;
+  for (const std::string& name : axis_names) {
+    scene.axes.push_back(SceneAxis{name, ReadAxisValues(file, table, name)});
+  }
+  double point_count = 1.0;
+  for (const SceneAxis& axis : scene.axes) point_count *= static_cast<double>(axis.values.size());
+  if (point_count > kMaxPointCount) {
+    file.Fail(table.Find("axes"), "table.axes",
+              "the table would have " + FormatNumber(point_count) +
+                  " points, more than the limit of " + FormatNumber(kMaxPointCount));
+  }
+
+  CaseParseOptions options;
+  options.check_files_exist = check_files_exist;
+  options.allow_table_section = true;
+  options.axis_names.insert(axis_names.begin(), axis_names.end());
+  scene.base = ReadCase(root, file, base_dir, options);
+  scene.base.source_text = std::string(text);
+  for (const SceneAxis& axis : scene.axes)
+    ApplyAxisValue(scene.base, axis.name, axis.values.front());
+
+  scene.outputs = ReadOutputs(file, table, scene.base.state.force_prescribed());
+  return scene;
+}
+
+}  // namespace
+}  // namespace io
+
+std::size_t Scene::PointCount() const {
+  std::size_t count = 1;
+  for (const SceneAxis& axis : axes) count *= axis.values.size();
+  return count;
+}
+
+std::vector<std::size_t> Scene::Shape() const {
+  std::vector<std::size_t> shape;
+  for (const SceneAxis& axis : axes) shape.push_back(axis.values.size());
+  return shape;
+}
+
+std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed) {
+  std::vector<std::string> outputs = {
+      "fx", "fy", "fz", "mx", "my", "mz", "n_patches", "contact_y", "contact_angle", "pmax"};
+  if (fz_prescribed) outputs.push_back("z");
+  return outputs;
+}
+
+std::string_view SceneQuantityUnit(std::string_view name) {
+  static const std::pair<std::string_view, std::string_view> kUnits[] = {
+      {"y", "mm"},        {"z", "mm"},         {"fz", "N"},
+      {"roll", "rad"},    {"yaw", "rad"},      {"spin", "-"},
+      {"omega", "rad/s"}, {"vy", "mm/s"},      {"vyaw", "rad/s"},
+      {"mu", "-"},        {"fx", "N"},         {"fy", "N"},
+      {"mx", "N*mm"},     {"my", "N*mm"},      {"mz", "N*mm"},
+      {"fx_ws", "N"},     {"fy_ws", "N"},      {"fz_ws", "N"},
+      {"n_patches", "-"}, {"contact_y", "mm"}, {"contact_angle", "rad"},
+      {"pmax", "N/mm^2"},
+  };
+  for (const auto& [quantity, unit] : kUnits) {
+    if (quantity == name) return unit;
+  }
+  return {};
+}
+
+Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values) {
+  if (axis_values.size() != scene.axes.size()) {
+    throw std::invalid_argument("CaseAtPoint: " + std::to_string(axis_values.size()) +
+                                " values for " + std::to_string(scene.axes.size()) + " axes");
+  }
+  Case point = scene.base;
+  for (std::size_t i = 0; i < axis_values.size(); ++i) {
+    const std::string& name = scene.axes[i].name;
+    const std::string problem = io::AxisValueProblem(name, axis_values[i]);
+    if (!problem.empty()) {
+      throw InputError(scene.base.source_name + ": table axis " + name + " = " +
+                       io::FormatNumber(axis_values[i]) + ": " + problem);
+    }
+    io::ApplyAxisValue(point, name, axis_values[i]);
+  }
+  return point;
+}
+
+Case CaseAtIndex(const Scene& scene, const std::vector<std::size_t>& indices) {
+  if (indices.size() != scene.axes.size()) {
+    throw std::out_of_range("CaseAtIndex: " + std::to_string(indices.size()) + " indices for " +
+                            std::to_string(scene.axes.size()) + " axes");
+  }
+  std::vector<double> values;
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    values.push_back(scene.axes[i].values.at(indices[i]));
+  }
+  return CaseAtPoint(scene, values);
+}
+
+Scene ParseScene(std::string_view toml_text, const std::filesystem::path& base_dir,
+                 std::string_view display_name) {
+  const io::SourceFile file{std::string(display_name)};
+  return io::ReadScene(toml_text, base_dir, file, /*check_files_exist=*/false);
+}
+
+Scene LoadScene(const std::filesystem::path& path) {
+  const std::string text = io::ReadTextFile(path);
+  const io::SourceFile file{path.string()};
+  return io::ReadScene(text, std::filesystem::absolute(path).parent_path(), file,
+                       /*check_files_exist=*/true);
+}
+
+}  // namespace wrc

@@ -1,0 +1,212 @@
+#pragma once
+/// @file case.h
+/// One contact problem as described by a case file (SPEC §2): one wheel on one rail, or a
+/// quadratic half-space problem (SPEC §2.1). Plain data; LoadCase() / ParseCase() fill it from
+/// TOML and validate every value, so code that receives a Case can rely on it.
+///
+/// Member defaults are the defaults of SPEC §2 ("keys not listed take the defaults shown").
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "wrc/material.h"
+
+namespace wrc {
+
+/// `problem.type`.
+enum class CaseType {
+  kWheelRail,  ///< "wheel-rail": profiles, track and wheelset (SPEC §2).
+  kHalfspace,  ///< "halfspace": h(x,y) = a1·x² + b1·y² − approach (SPEC §2.1).
+};
+
+/// `wheelset.side`: which wheel of the wheelset is in contact.
+enum class WheelSide { kRight, kLeft };
+
+/// `method.reference`: the contact reference surface.
+enum class ReferenceSurface {
+  kCurved,  ///< "curved": the paper's curved reference surface.
+  kPlanar,  ///< "planar": CONTACT's planar contact approach.
+};
+
+/// `method.position`: where the contact reference is placed.
+enum class ReferencePosition {
+  kInitial,   ///< "initial": the point of maximum interpenetration.
+  kWeighted,  ///< "weighted": weighted centre of the interpenetration region.
+};
+
+/// `method.angle`: how the reference contact angle is chosen.
+enum class ReferenceAngle {
+  kSampled,   ///< "sampled": the angle at the reference position.
+  kWeighted,  ///< "weighted": weighted mean over the interpenetration region.
+};
+
+/// `method.weights`: weight function for the weighted position and angle.
+enum class ReferenceWeights {
+  kLinear,     ///< "linear" (paper Eq. 13).
+  kQuadratic,  ///< "quadratic" (paper Eq. 14).
+};
+
+/// `[rail]` or `[wheel]`: a profile file.
+struct ProfileSource {
+  /// Profile file. Relative paths in the file are resolved against the case file's directory,
+  /// so this path is ready to open (absolute when the base directory was absolute).
+  std::filesystem::path path;
+  /// As written in the case file, for messages and for storing the profile under its name.
+  std::string path_as_written;
+  bool mirror_y = false;  ///< Mirror the profile in y before use.
+};
+
+/// `[track]`: placement of the rail.
+struct Track {
+  /// mm below the track plane where the gauge is measured; <= 0 selects the absolute
+  /// placement by rail_y / rail_z.
+  double gauge_height = 14.0;
+  double gauge_width = 1435.0;  ///< mm, used when gauge_height > 0.
+  double cant = 0.025;          ///< rad.
+  double rail_y = 0.0;          ///< mm, rail origin, used when gauge_height <= 0.
+  double rail_z = 0.0;          ///< mm, rail origin, used when gauge_height <= 0.
+
+  /// True when the rail is placed by rail_y / rail_z instead of by gauge.
+  bool absolute_placement() const { return gauge_height <= 0.0; }
+};
+
+/// `[wheelset]`: geometry of the wheelset.
+struct Wheelset {
+  WheelSide side = WheelSide::kRight;
+  double flange_back_distance = 1360.0;  ///< mm.
+  double flange_back_position = -70.0;   ///< mm, w.r.t. the wheel profile origin.
+  double nominal_radius = 460.0;         ///< mm, > 0.
+};
+
+/// `[friction]`: Coulomb friction, constant or varying with the surface inclination alpha:
+/// linear in between the given angles, constant outside them.
+struct Friction {
+  /// Inclination angles in degrees, strictly ascending. Empty for constant friction.
+  std::vector<double> alpha_deg;
+  /// Friction coefficients, >= 0: one value for constant friction, else one per alpha_deg.
+  std::vector<double> mu{0.3};
+
+  bool is_constant() const { return alpha_deg.empty(); }
+  /// Constant friction mu.
+  static Friction Constant(double mu) { return Friction{{}, {mu}}; }
+  /// The coefficient at inclination alpha (radians), interpolated as described above.
+  double MuAt(double alpha_rad) const;
+};
+
+/// Closed interval [min, max] with min < max.
+struct Interval {
+  double min = 0.0;
+  double max = 0.0;
+};
+
+/// `[grid]`: element sizes and, for half-space problems, the potential contact area.
+struct GridSettings {
+  double dx = 0.2;  ///< mm, rolling direction.
+  double ds = 0.2;  ///< mm, along the (curved) lateral direction; wheel-rail only.
+  double dy = 0.2;  ///< mm, lateral; half-space only.
+  /// Half-space only: the rectangle covered by cells (SPEC §2.1); when absent, the solver
+  /// chooses it around the Hertz ellipse.
+  std::optional<Interval> x;
+  std::optional<Interval> y;
+};
+
+/// `[method]`: the contact reference and the combination of interpenetration regions.
+struct Method {
+  ReferenceSurface reference = ReferenceSurface::kCurved;
+  ReferencePosition position = ReferencePosition::kWeighted;
+  ReferenceAngle angle = ReferenceAngle::kWeighted;
+  ReferenceWeights weights = ReferenceWeights::kQuadratic;
+  double combine_distance = 6.0;  ///< mm, >= 0.
+};
+
+/// `[effects]`: what is computed.
+struct Effects {
+  bool tangential = true;           ///< false: frictionless, normal problem only.
+  bool midplane_correction = true;  ///< Eq. 20, curved reference only.
+};
+
+/// `[geometry]` of a half-space problem: h(x,y) = a1·x² + b1·y² − approach.
+struct HalfspaceGeometry {
+  double a1 = 0.0;  ///< 1/mm, > 0.
+  double b1 = 0.0;  ///< 1/mm, > 0.
+};
+
+/// `[state]` of a wheel-rail problem. Exactly one of z and fz holds a value.
+struct WheelsetState {
+  double y = 6.25;             ///< mm, lateral wheelset position.
+  std::optional<double> z;     ///< mm, prescribed vertical position (z = 0 nominal).
+  std::optional<double> fz;    ///< N, prescribed vertical force on the rail, > 0.
+  double roll = 0.0;           ///< rad.
+  double yaw = 0.024;          ///< rad.
+  double velocity = 2000.0;    ///< mm/s, forward.
+  double omega = -4.3481124;   ///< rad/s, pitch velocity (negative for forward rolling).
+  std::optional<double> spin;  ///< -, when given instead of omega; omega holds its value.
+  double vy = 0.0;             ///< mm/s.
+  double vroll = 0.0;          ///< rad/s.
+  double vyaw = 0.0;           ///< rad/s.
+
+  /// True when fz is prescribed and z is solved for.
+  bool force_prescribed() const { return fz.has_value(); }
+};
+
+/// `[state]` of a half-space problem. Exactly one of fn and approach holds a value.
+struct HalfspaceState {
+  std::optional<double> fn;        ///< N, prescribed normal force, > 0.
+  std::optional<double> approach;  ///< mm, prescribed approach.
+  double cksi = 0.001;             ///< -, longitudinal creepage.
+  double ceta = 0.0;               ///< -, lateral creepage.
+  double cphi = 0.0;               ///< 1/mm, spin creepage.
+
+  /// True when fn is prescribed and the approach is solved for.
+  bool force_prescribed() const { return fn.has_value(); }
+};
+
+/// A whole case. Sections that do not belong to the case's type keep their defaults.
+struct Case {
+  CaseType type = CaseType::kWheelRail;
+
+  // Wheel-rail problems.
+  ProfileSource rail;
+  ProfileSource wheel;
+  Track track;
+  Wheelset wheelset;
+  WheelsetState state;
+
+  // Half-space problems.
+  HalfspaceGeometry geometry;
+  HalfspaceState halfspace_state;
+
+  // Both.
+  ElasticMaterial rail_material;   ///< Body 1.
+  ElasticMaterial wheel_material;  ///< Body 2.
+  Friction friction;
+  GridSettings grid;
+  Method method;
+  Effects effects;
+
+  std::string source_name;         ///< File name used in messages.
+  std::filesystem::path base_dir;  ///< Directory that relative paths are resolved against.
+  std::string source_text;         ///< The original TOML text (tables store it verbatim).
+};
+
+/// Pitch velocity for a spin value (SPEC §4.1): omega = −(velocity / nominal_radius)·(1 + spin).
+/// spin is the rotation relative to free rolling at the nominal radius; 0.01 turns the wheel
+/// 1 % faster than free rolling.
+inline double OmegaFromSpin(double spin, double velocity, double nominal_radius) {
+  return -(velocity / nominal_radius) * (1.0 + spin);
+}
+
+/// Reads and validates a case file. Also checks that the profile files exist.
+/// Throws InputError with a message "file:line: key = value: problem".
+Case LoadCase(const std::filesystem::path& path);
+
+/// Parses and validates case text. `base_dir` resolves relative profile paths (the files need
+/// not exist: a table carries its profiles along); `display_name` names the source in
+/// messages. Throws InputError.
+Case ParseCase(std::string_view toml_text, const std::filesystem::path& base_dir,
+               std::string_view display_name);
+
+}  // namespace wrc

@@ -1,0 +1,81 @@
+#pragma once
+/// @file scene.h
+/// A scene (SPEC §4.1): a wheel-rail case plus a `[table]` section that spans a grid of states.
+/// Each table axis varies one quantity; quantities not on an axis come from the case.
+///
+/// Axis values are given in one of three forms:
+///  - `{from = a, to = b, step = h}`: a, a + h, a + 2h, ... up to b. b itself is included when
+///    it lies on that grid within 1e-9·h (and then appears exactly as written), so
+///    `{from = 0.0, to = 1.0, step = 0.1}` gives 11 values despite rounding. Needs h > 0 and
+///    a <= b.
+///  - `{from = a, to = b, count = n}`: n equally spaced values from a to b inclusive (n >= 2 and
+///    a < b, or n = 1 and a = b).
+///  - `[v0, v1, ...]`: explicit values, strictly ascending.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "wrc/case.h"
+
+namespace wrc {
+
+/// One table axis: its name (see kSceneAxisNames) and its values, strictly ascending.
+struct SceneAxis {
+  std::string name;
+  std::vector<double> values;
+};
+
+/// A parsed and validated scene.
+struct Scene {
+  /// The case with every axis quantity set to the axis' first value, so that it is complete.
+  /// base.source_text is the full scene text.
+  Case base;
+  std::vector<SceneAxis> axes;       ///< In dimension order (`table.axes`).
+  std::vector<std::string> outputs;  ///< Output names (SPEC §4.2), in file order.
+
+  /// Number of grid points: the product of the axis lengths.
+  std::size_t PointCount() const;
+  /// Axis lengths in dimension order (the table's array shape).
+  std::vector<std::size_t> Shape() const;
+};
+
+/// Allowed axis names (SPEC §4.1).
+inline constexpr std::string_view kSceneAxisNames[] = {"y",    "z",     "fz", "roll", "yaw",
+                                                       "spin", "omega", "vy", "vyaw", "mu"};
+
+/// Allowed output names (SPEC §4.2). `z` requires a prescribed fz.
+inline constexpr std::string_view kSceneOutputNames[] = {
+    "fx",    "fy",    "fz",    "mx",        "my",        "mz",
+    "fx_ws", "fy_ws", "fz_ws", "n_patches", "contact_y", "contact_angle",
+    "pmax",  "z"};
+
+/// The outputs used when `table.outputs` is absent: fx fy fz mx my mz n_patches contact_y
+/// contact_angle pmax, plus z when fz is prescribed (fz is in the list anyway).
+std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);
+
+/// Unit of an axis or output quantity, as stored in the table ("mm", "N", "rad", "N*mm",
+/// "N/mm^2", "rad/s", "mm/s", "-"). Empty for an unknown name.
+std::string_view SceneQuantityUnit(std::string_view name);
+
+/// The case at one grid point: `axis_values` holds one value per axis, in axis order, and need
+/// not be grid nodes (e.g. random samples). A spin value is converted to omega with the case's
+/// velocity and nominal radius; a mu value makes friction constant. Throws
+/// std::invalid_argument when the number of values does not match, InputError for values that
+/// are not allowed (NaN, mu < 0, fz <= 0).
+Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values);
+
+/// The case at a grid node, one index per axis. Throws std::out_of_range for a bad index.
+Case CaseAtIndex(const Scene& scene, const std::vector<std::size_t>& indices);
+
+/// Reads and validates a scene file. Also checks that the profile files exist.
+/// Throws InputError with a message "file:line: key = value: problem".
+Scene LoadScene(const std::filesystem::path& path);
+
+/// Parses and validates scene text; see ParseCase() for `base_dir` and `display_name`.
+Scene ParseScene(std::string_view toml_text, const std::filesystem::path& base_dir,
+                 std::string_view display_name);
+
+}  // namespace wrc
