@@ -1,0 +1,653 @@
+// Readers for Simpack (.prr/.prw), MiniProf (.ban/.whl) and plain column profile files.
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "core/geometry/profile_internal.h"
+#include "wrc/errors.h"
+#include "wrc/profile.h"
+
+namespace wrc {
+namespace profile_detail {
+
+std::string At(const std::string& source, int line, const std::string& message) {
+  return source + ":" + std::to_string(line) + ": " + message;
+}
+
+std::optional<double> ParseNumber(std::string_view token) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return std::nullopt;
+  double value = 0.0;
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  // from_chars also reports out-of-range values (1e999); they are not usable numbers either.
+  if (ec != std::errc() || ptr != end) return std::nullopt;
+  return value;
+}
+
+}  // namespace profile_detail
+
+namespace {
+
+using profile_detail::At;
+using profile_detail::ParseNumber;
+
+std::string_view Trim(std::string_view text) {
+  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+std::string Lower(std::string_view text) {
+  std::string result(text);
+  for (char& c : result) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return result;
+}
+
+bool StartsWith(std::string_view text, std::string_view prefix) {
+  return text.substr(0, prefix.size()) == prefix;
+}
+
+std::string Extension(const std::string& path) {
+  return Lower(std::filesystem::path(path).extension().string());
+}
+
+/// A line of text shortened for messages, so that a binary file does not flood the terminal.
+std::string Quote(std::string_view text) {
+  constexpr std::size_t kMaxShown = 60;
+  std::string shown(Trim(text).substr(0, kMaxShown));
+  if (Trim(text).size() > kMaxShown) shown += "...";
+  return "'" + shown + "'";
+}
+
+/// Splits at any of `separators`, dropping empty pieces (runs of spaces).
+std::vector<std::string_view> Split(std::string_view text, std::string_view separators) {
+  std::vector<std::string_view> tokens;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = text.find_first_of(separators, start);
+    const std::size_t stop = end == std::string_view::npos ? text.size() : end;
+    if (stop > start) tokens.push_back(text.substr(start, stop - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return tokens;
+}
+
+constexpr std::string_view kBlanks = " \t\f\v";
+
+/// The file's lines without line terminators (LF or CRLF). Throws for a missing, unreadable or
+/// empty file.
+std::vector<std::string> ReadLines(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw InputError(path + ": cannot open profile file: no such file");
+  }
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path + ": cannot open profile file: it is a directory");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open profile file: permission denied or unreadable");
+  std::vector<std::string> lines;
+  std::string line;
+  bool any_text = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!Trim(line).empty()) any_text = true;
+    lines.push_back(line);
+  }
+  if (in.bad()) throw InputError(path + ": error while reading the profile file");
+  if (!any_text) throw InputError(At(path, 1, "the profile file is empty"));
+  return lines;
+}
+
+/// Checks that every value is finite; the message names the offending token.
+void RequireFinite(const std::string& source, int line, const std::vector<std::string_view>& tokens,
+                   const std::vector<double>& values) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InputError(
+          At(source, line, "value '" + std::string(tokens[i]) + "' is not a finite number"));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Simpack .prr / .prw
+
+/// Cuts a Simpack comment ('!' or '%' up to the end of the line) unless it is inside quotes,
+/// as in comment = 'wheel 1 ! worn'.
+std::string_view StripSimpackComment(std::string_view line) {
+  char quote = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+    } else if (c == '!' || c == '%') {
+      return line.substr(0, i);
+    }
+  }
+  return line;
+}
+
+struct SimpackSetting {
+  std::string value;
+  int line = 0;
+};
+
+ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::string>& lines) {
+  ProfilePoints result;
+  result.format = ProfileFormat::kSimpack;
+  result.source = path;
+  std::map<std::string, SimpackSetting> header;
+  std::map<std::string, SimpackSetting> settings;  // spline block
+  std::vector<double> weights;
+
+  enum class Block { kNone, kHeader, kSpline, kPoints };
+  Block block = Block::kNone;
+  int point_block_line = 0;
+  bool seen_point_block = false;
+  bool warned_extra_columns = false;
+  for (std::size_t index = 0; index < lines.size(); ++index) {
+    const int line_number = static_cast<int>(index) + 1;
+    const std::string_view text = Trim(StripSimpackComment(lines[index]));
+    if (text.empty()) continue;
+    const std::string keyword = Lower(text);
+    if (keyword == "header.begin") {
+      block = Block::kHeader;
+    } else if (keyword == "spline.begin") {
+      block = Block::kSpline;
+    } else if (keyword == "point.begin") {
+      block = Block::kPoints;
+      point_block_line = line_number;
+      seen_point_block = true;
+    } else if (keyword == "point.end") {
+      if (block != Block::kPoints) {
+        throw InputError(At(path, line_number, "point.end without point.begin"));
+      }
+      block = Block::kSpline;
+    } else if (keyword == "header.end" || keyword == "spline.end") {
+      if (block == Block::kPoints) {
+        throw InputError(
+            At(path, line_number, Quote(text) + " inside the point block (missing point.end?)"));
+      }
+      block = Block::kNone;
+    } else if (block == Block::kPoints) {
+      const std::vector<std::string_view> tokens = Split(text, " \t\f\v,");
+      std::vector<double> values;
+      for (const std::string_view token : tokens) {
+        const std::optional<double> value = ParseNumber(token);
+        if (!value) {
+          throw InputError(At(path, line_number,
+                              "'" + std::string(token) + "' is not a number (in " + Quote(text) +
+                                  ", expected 'y z [weight]')"));
+        }
+        values.push_back(*value);
+      }
+      if (values.size() < 2) {
+        throw InputError(At(path, line_number, "expected 'y z [weight]' but found " + Quote(text)));
+      }
+      RequireFinite(path, line_number, tokens, values);
+      if (values.size() > 3 && !warned_extra_columns) {
+        result.warnings.push_back(At(path, line_number, "columns after 'y z weight' are ignored"));
+        warned_extra_columns = true;
+      }
+      result.y.push_back(values[0]);
+      result.z.push_back(values[1]);
+      result.lines.push_back(line_number);
+      weights.push_back(values.size() >= 3 ? values[2] : 1.0);
+    } else if (block == Block::kHeader || block == Block::kSpline) {
+      const std::size_t equals = text.find('=');
+      if (equals == std::string_view::npos) {
+        result.warnings.push_back(At(path, line_number, "ignored line " + Quote(text)));
+        continue;
+      }
+      SimpackSetting setting{std::string(Trim(text.substr(equals + 1))), line_number};
+      auto& target = block == Block::kHeader ? header : settings;
+      target[Lower(Trim(text.substr(0, equals)))] = setting;
+    } else {
+      result.warnings.push_back(
+          At(path, line_number, "ignored line outside the Simpack blocks: " + Quote(text)));
+    }
+  }
+  if (block == Block::kPoints) {
+    throw InputError(At(path, static_cast<int>(lines.size()),
+                        "file ends inside the point block opened at line " +
+                            std::to_string(point_block_line) + " (missing point.end)"));
+  }
+  if (!seen_point_block) {
+    throw InputError(At(path, static_cast<int>(lines.size()),
+                        "no point.begin ... point.end block: not a Simpack profile"));
+  }
+
+  // A setting's numeric value, or `fallback` when the file does not have it.
+  const auto number = [&path](const std::map<std::string, SimpackSetting>& map,
+                              const std::string& key, double fallback) {
+    const auto it = map.find(key);
+    if (it == map.end()) return fallback;
+    const std::optional<double> value = ParseNumber(it->second.value);
+    if (!value || !std::isfinite(*value)) {
+      throw InputError(
+          At(path, it->second.line, key + " = '" + it->second.value + "' is not a finite number"));
+    }
+    return *value;
+  };
+  const auto line_of = [](const std::map<std::string, SimpackSetting>& map,
+                          const std::string& key) {
+    const auto it = map.find(key);
+    return it == map.end() ? 0 : it->second.line;
+  };
+
+  if (header.count("type") != 0) {
+    const double type = number(header, "type", 0.0);
+    if (type == 0.0) result.declared_kind = ProfileKind::kRail;
+    if (type == 1.0) result.declared_kind = ProfileKind::kWheel;
+  }
+  if (number(settings, "approx.smooth", 0.0) != 0.0) {
+    result.warnings.push_back(At(path, line_of(settings, "approx.smooth"),
+                                 "Simpack approx.smooth is ignored (as in CONTACT); use the "
+                                 "smoothing option instead"));
+  }
+  if (std::any_of(weights.begin(), weights.end(), [](double w) { return w != 1.0; })) {
+    result.warnings.push_back(At(path, point_block_line, "point weights are ignored"));
+  }
+
+  // Simpack's own processing steps, in the order its numbered comments give (1 to 7).
+  std::vector<double>& y = result.y;
+  std::vector<double>& z = result.z;
+  std::vector<int>& line_numbers = result.lines;
+  const auto keep_if = [&](auto predicate) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      if (!predicate(i, kept)) continue;
+      y[kept] = y[i];
+      z[kept] = z[i];
+      line_numbers[kept] = line_numbers[i];
+      ++kept;
+    }
+    const std::size_t dropped = y.size() - kept;
+    y.resize(kept);
+    z.resize(kept);
+    line_numbers.resize(kept);
+    return dropped;
+  };
+  // 1: point.dist.min drops points closer than that to the previously kept point.
+  const double min_distance = number(settings, "point.dist.min", 0.0);
+  if (min_distance > 0.0) {
+    const std::size_t dropped = keep_if([&](std::size_t i, std::size_t kept) {
+      return kept == 0 || std::hypot(y[i] - y[kept - 1], z[i] - z[kept - 1]) >= min_distance;
+    });
+    if (dropped > 0) {
+      result.warnings.push_back(At(path, line_of(settings, "point.dist.min"),
+                                   std::to_string(dropped) + " points dropped by point.dist.min"));
+    }
+  }
+  // 2: shift.
+  const double shift_y = number(settings, "shift.y", 0.0);
+  const double shift_z = number(settings, "shift.z", 0.0);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    y[i] += shift_y;
+    z[i] += shift_z;
+  }
+  // 3: rotate. Its sign convention is not documented well enough to apply it safely.
+  if (number(settings, "rotate", 0.0) != 0.0) {
+    throw InputError(At(path, line_of(settings, "rotate"),
+                        "a non-zero Simpack 'rotate' is not supported; rotate the points in "
+                        "the file instead"));
+  }
+  // 4: bounds; a pair with min >= max (Simpack writes min = 1, max = 0) means no bound.
+  const double y_min = number(settings, "bound.y.min", 1.0);
+  const double y_max = number(settings, "bound.y.max", 0.0);
+  const double z_min = number(settings, "bound.z.min", 1.0);
+  const double z_max = number(settings, "bound.z.max", 0.0);
+  if (y_min < y_max || z_min < z_max) {
+    const std::size_t dropped = keep_if([&](std::size_t i, std::size_t) {
+      return (y_min >= y_max || (y[i] >= y_min && y[i] <= y_max)) &&
+             (z_min >= z_max || (z[i] >= z_min && z[i] <= z_max));
+    });
+    if (dropped > 0) {
+      result.warnings.push_back(
+          At(path, point_block_line,
+             std::to_string(dropped) + " points outside the Simpack bounds dropped"));
+    }
+  }
+  // 5: mirroring.
+  if (number(settings, "mirror.y", 0.0) != 0.0) {
+    for (double& value : y) value = -value;
+    result.mirrored_y = true;
+  }
+  if (number(settings, "mirror.z", 0.0) != 0.0) {
+    for (double& value : z) value = -value;
+    result.mirrored_z = true;
+  }
+  // 6: inversion of the point order.
+  if (number(settings, "inversion", 0.0) != 0.0) {
+    std::reverse(y.begin(), y.end());
+    std::reverse(z.begin(), z.end());
+    std::reverse(line_numbers.begin(), line_numbers.end());
+  }
+  // 7: units.len.f is "length unit per metre": 1000 means the numbers are in mm.
+  if (settings.count("units.len.f") == 0) {
+    result.warnings.push_back(At(path, point_block_line, "no units.len.f; assuming mm"));
+  } else {
+    const double unit_per_metre = number(settings, "units.len.f", 1000.0);
+    if (unit_per_metre <= 0.0) {
+      throw InputError(At(path, line_of(settings, "units.len.f"), "units.len.f must be positive"));
+    }
+    const double to_mm = 1000.0 / unit_per_metre;
+    if (to_mm != 1.0) {
+      for (std::size_t i = 0; i < y.size(); ++i) {
+        y[i] *= to_mm;
+        z[i] *= to_mm;
+      }
+    }
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// MiniProf .ban / .whl
+
+enum class MiniProfLine {
+  kSkip,             ///< Blank, or a comment starting with '%', '!' or '#'.
+  kQuoted,           ///< Starts with '"': a switched-off header line or point.
+  kKeyValue,         ///< key=value header line.
+  kNumeric,          ///< Two or more numbers and nothing else (after a trailing comment).
+  kNumericWithText,  ///< Two or more numbers followed by text.
+  kText,             ///< Anything else.
+};
+
+struct ClassifiedLine {
+  MiniProfLine kind = MiniProfLine::kSkip;
+  std::vector<std::string_view> tokens;  ///< The numeric tokens.
+  std::vector<double> values;
+  std::string_view text;  ///< The trimmed line (comment removed).
+};
+
+ClassifiedLine ClassifyMiniProfLine(std::string_view raw) {
+  ClassifiedLine line;
+  std::string_view text = Trim(raw);
+  line.text = text;
+  if (text.empty() || text.front() == '%' || text.front() == '!' || text.front() == '#') {
+    line.kind = MiniProfLine::kSkip;
+    return line;
+  }
+  if (text.front() == '"') {
+    line.kind = MiniProfLine::kQuoted;
+    return line;
+  }
+  const std::size_t equals = text.find('=');
+  if (equals != std::string_view::npos && !ParseNumber(Trim(text.substr(0, equals)))) {
+    line.kind = MiniProfLine::kKeyValue;
+    return line;
+  }
+  // After the numbers, '"' starts a note as well (avg_low2.ban line 74: `... " zig-zag pattern`).
+  const std::size_t comment = text.find_first_of("%!\"");
+  if (comment != std::string_view::npos) text = Trim(text.substr(0, comment));
+  line.text = text;
+  const std::vector<std::string_view> tokens = Split(text, " \t\f\v,;");
+  std::size_t numeric = 0;
+  while (numeric < tokens.size()) {
+    const std::optional<double> value = ParseNumber(tokens[numeric]);
+    if (!value) break;
+    line.tokens.push_back(tokens[numeric]);
+    line.values.push_back(*value);
+    ++numeric;
+  }
+  if (numeric >= 2) {
+    line.kind = numeric == tokens.size() ? MiniProfLine::kNumeric : MiniProfLine::kNumericWithText;
+  } else {
+    line.kind = MiniProfLine::kText;
+  }
+  return line;
+}
+
+ProfilePoints ParseMiniProf(const std::string& path, const std::vector<std::string>& lines) {
+  ProfilePoints result;
+  result.format = ProfileFormat::kMiniProf;
+  result.source = path;
+  std::vector<ClassifiedLine> classified;
+  classified.reserve(lines.size());
+  for (const std::string& line : lines) classified.push_back(ClassifyMiniProfLine(line));
+
+  const auto is_numeric = [](const ClassifiedLine& line) {
+    return line.kind == MiniProfLine::kNumeric || line.kind == MiniProfLine::kNumericWithText;
+  };
+  // The data section starts at the first clean numeric line followed by two more numeric
+  // lines (blank, comment and quoted lines in between do not count). A lone numeric line
+  // before it, like the "Sd Sh qR" line of old wheel files, belongs to the header.
+  constexpr int kRunLength = 3;
+  std::size_t data_start = classified.size();
+  std::size_t first_clean = classified.size();
+  for (std::size_t i = 0; i < classified.size(); ++i) {
+    if (classified[i].kind != MiniProfLine::kNumeric) continue;
+    if (first_clean == classified.size()) first_clean = i;
+    int run = 1;
+    for (std::size_t j = i + 1; j < classified.size() && run < kRunLength; ++j) {
+      const MiniProfLine kind = classified[j].kind;
+      if (kind == MiniProfLine::kSkip || kind == MiniProfLine::kQuoted) continue;
+      if (!is_numeric(classified[j])) break;
+      ++run;
+    }
+    if (run >= kRunLength) {
+      data_start = i;
+      break;
+    }
+  }
+  // Files with fewer points than a run still get a data section, so that the error about too
+  // few points can name the file and line.
+  if (data_start == classified.size()) data_start = first_clean;
+  if (data_start == classified.size()) {
+    throw InputError(At(path, static_cast<int>(lines.size()),
+                        "no numeric data lines found in the MiniProf file"));
+  }
+
+  for (std::size_t i = 0; i < data_start; ++i) {
+    const ClassifiedLine& line = classified[i];
+    const int line_number = static_cast<int>(i) + 1;
+    if (is_numeric(line)) {
+      result.warnings.push_back(
+          At(path, line_number,
+             "numeric header line " + Quote(lines[i]) + " ignored (not part of the profile data)"));
+    } else if (line.kind == MiniProfLine::kKeyValue) {
+      // Offsets other than 0 would move the profile; MiniProf's exact meaning is not known to
+      // wrc, so they are reported rather than applied.
+      const std::string_view text = line.text;
+      const std::size_t equals = text.find('=');
+      const std::string key = Lower(Trim(text.substr(0, equals)));
+      if (key == "xoffset" || key == "yoffset") {
+        const std::optional<double> value = ParseNumber(Trim(text.substr(equals + 1)));
+        if (value && *value != 0.0) {
+          result.warnings.push_back(
+              At(path, line_number, Quote(text) + " is not applied to the points"));
+        }
+      }
+    }
+  }
+  for (std::size_t i = data_start; i < classified.size(); ++i) {
+    const ClassifiedLine& line = classified[i];
+    const int line_number = static_cast<int>(i) + 1;
+    switch (line.kind) {
+      case MiniProfLine::kSkip:
+        break;
+      case MiniProfLine::kQuoted:
+        result.warnings.push_back(
+            At(path, line_number, "switched-off point " + Quote(lines[i]) + " skipped"));
+        break;
+      case MiniProfLine::kKeyValue:
+      case MiniProfLine::kText: {
+        const std::vector<std::string_view> tokens = Split(line.text, " \t\f\v,;");
+        std::string bad = tokens.empty() ? std::string(line.text) : std::string(tokens.front());
+        for (const std::string_view token : tokens) {
+          if (!ParseNumber(token)) {
+            bad = std::string(token);
+            break;
+          }
+        }
+        throw InputError(At(path, line_number,
+                            "'" + bad + "' is not a number (line " + Quote(lines[i]) +
+                                " in the data section, which started at line " +
+                                std::to_string(data_start + 1) + ")"));
+      }
+      case MiniProfLine::kNumericWithText:
+        result.warnings.push_back(
+            At(path, line_number, "text after the numbers ignored: " + Quote(lines[i])));
+        [[fallthrough]];
+      case MiniProfLine::kNumeric:
+        RequireFinite(path, line_number, line.tokens, line.values);
+        result.y.push_back(line.values[0]);
+        result.z.push_back(line.values[1]);
+        result.lines.push_back(line_number);
+        break;
+    }
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Plain columns (CSV and friends)
+
+ProfilePoints ParseTable(const std::string& path, const std::vector<std::string>& lines) {
+  ProfilePoints result;
+  result.format = ProfileFormat::kTable;
+  result.source = path;
+  int first_data_line = 0;
+  for (std::size_t index = 0; index < lines.size(); ++index) {
+    const int line_number = static_cast<int>(index) + 1;
+    std::string_view text = Trim(lines[index]);
+    const std::size_t comment = text.find_first_of("#%!");
+    if (comment != std::string_view::npos) text = Trim(text.substr(0, comment));
+    if (text.empty()) continue;
+
+    // With ';' as separator a ',' is a decimal comma (spreadsheets in many locales write that).
+    const bool semicolons = text.find(';') != std::string_view::npos;
+    std::vector<std::string_view> tokens = Split(text, semicolons ? " \t\f\v;" : " \t\f\v,");
+    std::vector<std::string> owned;
+    owned.reserve(tokens.size());
+    for (const std::string_view token : tokens) {
+      std::string copy(token);
+      if (semicolons) std::replace(copy.begin(), copy.end(), ',', '.');
+      owned.push_back(std::move(copy));
+    }
+    std::vector<double> values;
+    std::size_t bad = owned.size();
+    for (std::size_t i = 0; i < owned.size(); ++i) {
+      const std::optional<double> value = ParseNumber(owned[i]);
+      if (!value) {
+        bad = i;
+        break;
+      }
+      values.push_back(*value);
+    }
+    // An empty field between two separators ("1,,2") shows up as a missing column.
+    const bool empty_field = !semicolons && text.find(",,") != std::string_view::npos;
+    if (first_data_line == 0) {
+      if (bad < owned.size() || values.size() < 2) continue;  // Header line.
+      first_data_line = line_number;
+    }
+    if (bad < owned.size()) {
+      throw InputError(
+          At(path, line_number, "'" + owned[bad] + "' is not a number (in " + Quote(text) + ")"));
+    }
+    if (values.size() < 2 || empty_field) {
+      throw InputError(
+          At(path, line_number, "expected at least two columns y, z but found " + Quote(text)));
+    }
+    RequireFinite(path, line_number, tokens, values);
+    result.y.push_back(values[0]);
+    result.z.push_back(values[1]);
+    result.lines.push_back(line_number);
+  }
+  if (first_data_line == 0) {
+    throw InputError(At(path, static_cast<int>(lines.size()),
+                        "no numeric data lines with two columns y, z found"));
+  }
+  return result;
+}
+
+ProfileFormat SniffFormat(const std::vector<std::string>& lines) {
+  bool first_text_line = true;
+  for (const std::string& raw : lines) {
+    const std::string text = Lower(Trim(raw));
+    if (text.empty()) continue;
+    if (text == "header.begin" || text == "spline.begin" || text == "point.begin") {
+      return ProfileFormat::kSimpack;
+    }
+    if (first_text_line && (StartsWith(text, "miniprof") || StartsWith(text, "#miniwheelprof"))) {
+      return ProfileFormat::kMiniProf;
+    }
+    if (StartsWith(text, "columndef=") || StartsWith(text, "xypoints=") ||
+        StartsWith(text, "mptypeno=")) {
+      return ProfileFormat::kMiniProf;
+    }
+    first_text_line = false;
+  }
+  return ProfileFormat::kTable;
+}
+
+std::optional<ProfileFormat> FormatFromExtension(const std::string& path) {
+  const std::string extension = Extension(path);
+  if (extension == ".prr" || extension == ".prw") return ProfileFormat::kSimpack;
+  if (extension == ".ban" || extension == ".whl") return ProfileFormat::kMiniProf;
+  if (extension == ".csv") return ProfileFormat::kTable;
+  return std::nullopt;
+}
+
+std::string KindName(ProfileKind kind) { return kind == ProfileKind::kRail ? "rail" : "wheel"; }
+
+}  // namespace
+
+std::optional<ProfileKind> ProfileKindFromExtension(const std::string& path) {
+  const std::string extension = Extension(path);
+  if (extension == ".prr" || extension == ".ban") return ProfileKind::kRail;
+  if (extension == ".prw" || extension == ".whl") return ProfileKind::kWheel;
+  return std::nullopt;
+}
+
+ProfileFormat DetectProfileFormat(const std::string& path) {
+  const std::vector<std::string> lines = ReadLines(path);
+  if (const std::optional<ProfileFormat> format = FormatFromExtension(path)) return *format;
+  return SniffFormat(lines);
+}
+
+ProfilePoints ReadProfilePoints(const std::string& path) {
+  const std::vector<std::string> lines = ReadLines(path);
+  const ProfileFormat format = FormatFromExtension(path).value_or(SniffFormat(lines));
+  switch (format) {
+    case ProfileFormat::kSimpack:
+      return ParseSimpack(path, lines);
+    case ProfileFormat::kMiniProf:
+      return ParseMiniProf(path, lines);
+    case ProfileFormat::kTable:
+      break;
+  }
+  return ParseTable(path, lines);
+}
+
+Profile ReadProfile(const std::string& path, ProfileKind kind, const ProfileOptions& options) {
+  ProfilePoints points = ReadProfilePoints(path);
+  if (points.declared_kind && *points.declared_kind != kind) {
+    points.warnings.push_back(path + ": the file declares a " + KindName(*points.declared_kind) +
+                              " profile but is used as a " + KindName(kind) + " profile");
+  } else if (const std::optional<ProfileKind> by_extension = ProfileKindFromExtension(path);
+             !points.declared_kind && by_extension && *by_extension != kind) {
+    points.warnings.push_back(path + ": the extension suggests a " + KindName(*by_extension) +
+                              " profile but it is used as a " + KindName(kind) + " profile");
+  }
+  return RepairProfile(std::move(points), kind, options);
+}
+
+}  // namespace wrc

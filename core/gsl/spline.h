@@ -1,0 +1,58 @@
+#pragma once
+/// @file spline.h
+/// One-dimensional interpolating splines from GSL (gsl_spline), owned RAII-style. The spline is
+/// evaluated without a gsl_interp_accel (GSL then bisects the knot table), so every const
+/// member is safe to call from several threads at once. GSL failures throw wrc::GslError
+/// (core/gsl/error.h).
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace wrc::gsl {
+
+/// The GSL interpolation types offered here.
+enum class SplineType {
+  kLinear,        ///< gsl_interp_linear: piecewise linear.
+  kNaturalCubic,  ///< gsl_interp_cspline: C2 cubic with zero second derivative at both ends.
+  kAkima,         ///< gsl_interp_akima: C1 cubic, little overshoot near outliers.
+  kSteffen,       ///< gsl_interp_steffen: C1 cubic, monotone between monotone data.
+};
+
+/// An interpolating spline f(x) through the knots (x_i, f_i), x strictly increasing.
+class Spline {
+ public:
+  /// Builds the spline. Throws GslError (GSL_EINVAL) if x is not strictly increasing, the sizes
+  /// differ or there are fewer knots than the type needs (2 for linear, 3 for cubic, 5 Akima).
+  Spline(std::vector<double> x, std::vector<double> f, SplineType type = SplineType::kNaturalCubic);
+  ~Spline();
+  Spline(const Spline& other);
+  Spline& operator=(const Spline& other);
+  Spline(Spline&& other) noexcept;
+  Spline& operator=(Spline&& other) noexcept;
+
+  /// f(x), f'(x), f''(x) for x in [x_min(), x_max()]; outside that range GslError(GSL_EDOM).
+  double Value(double x) const;
+  double Derivative(double x) const;
+  double SecondDerivative(double x) const;
+  /// ∫_a^b f(x) dx with a, b in [x_min(), x_max()].
+  double Integral(double a, double b) const;
+
+  double x_min() const { return x_.front(); }
+  double x_max() const { return x_.back(); }
+  std::size_t size() const { return x_.size(); }
+  const std::vector<double>& knots() const { return x_; }
+  const std::vector<double>& values() const { return f_; }
+  SplineType type() const { return type_; }
+
+ private:
+  struct State;  // Holds the gsl_spline; defined in spline.cpp so GSL's headers stay there.
+  void Build();
+
+  std::vector<double> x_;
+  std::vector<double> f_;
+  SplineType type_;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace wrc::gsl

@@ -1,0 +1,243 @@
+#pragma once
+/// @file profile.h
+/// Wheel and rail profiles: readers for the file formats CONTACT accepts, the repairs CONTACT
+/// applies to measured data, and a smooth arc-length spline of the result.
+///
+/// Conventions (as CONTACT's "Inputs regarding wheel and rail profiles", SPEC.md §1): lengths in
+/// mm; rail profiles in rail coordinates and wheel profiles in wheel coordinates, y lateral and
+/// positive towards the field side, z positive downwards. After ReadProfile the points run
+///  - for a rail:  from the track centre to the field side, y ascending overall;
+///  - for a wheel: from the field side to the flange side, y descending overall;
+/// so that, walking along the points, the material is on the right-hand side (in the y–z
+/// picture with z pointing down).
+///
+/// Typical use:
+/// @code
+///   wrc::ProfileOptions options;
+///   options.mirror_y = true;
+///   wrc::Profile rail = wrc::ReadProfile("avg_HR.BAN", wrc::ProfileKind::kRail, options);
+///   for (const std::string& w : rail.warnings) std::cerr << "warning: " << w << '\n';
+///   wrc::ProfileSpline spline(rail);
+///   wrc::ProfileHeight top = spline.ZAtY(0.0);
+/// @endcode
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wrc {
+
+/// Which body a profile describes; fixes the expected orientation (see file comment).
+enum class ProfileKind { kRail, kWheel };
+
+/// How the file's contents were read.
+enum class ProfileFormat {
+  kSimpack,   ///< Simpack .prr/.prw: header.begin / spline.begin / point.begin blocks.
+  kMiniProf,  ///< MiniProf .ban/.whl: header lines (mostly key=value), then numeric columns.
+  kTable,     ///< Plain columns y, z: comma, semicolon or white space separated.
+};
+
+/// Whether z is mirrored (z → −z), as CONTACT's MIRRORZ.
+enum class MirrorZ {
+  kAuto,  ///< MIRRORZ = 0: mirror when the end faces point the wrong way (ProfileOptions).
+  kYes,   ///< MIRRORZ = 1: always mirror.
+  kNo,    ///< MIRRORZ = −1: use z as given.
+};
+
+/// What ReadProfile / MakeProfile do with the points beyond parsing them.
+struct ProfileOptions {
+  /// Mirror y (y → −y) before anything else, as CONTACT's MIRRORY = 1. MiniProf rail files
+  /// usually need it (avg_HR.BAN does).
+  bool mirror_y = false;
+  /// Mirror z. Automatic detection looks at the two ends of the profile: over the last 2 mm of
+  /// each end, a face steeper than 30° counts as a side face. Rail side faces must run towards
+  /// +z (downwards) at the ends, wheel side faces (flange back, field-side chamfer) towards −z.
+  /// z is mirrored when the side faces found point the wrong way in majority; with no side face
+  /// (flat or grooved profiles) or a tie, z is kept and a warning says so. This follows the user
+  /// guide's description of CONTACT's heuristic ("based on wheel and rail side faces"); its exact
+  /// algorithm is not documented. It agrees with CONTACT on every file in shared/profiles whose
+  /// behaviour is known (Simpack files kept, MiniProf rails mirrored, grooves kept).
+  MirrorZ mirror_z = MirrorZ::kAuto;
+  /// Smoothing wavelength L_filt in mm (CONTACT's SMOOTH with ISMOOTH = 1); 0 = no smoothing.
+  /// The points are replaced by a weighted cubic smoothing spline that halves fluctuations of
+  /// wavelength L_filt along the profile, damps shorter ones more and keeps longer ones:
+  /// minimises Σ w_i |x_i − f(s_i)|² + λ ∫|f''(s)|² ds with w_i = (s_{i+1} − s_{i−1})/2 and
+  /// λ = (L_filt/2π)⁴, s the chord length of the repaired points.
+  double smoothing = 0.0;
+  /// Zig-zag threshold in degrees (CONTACT's ZIGTHRS = 5π/6): a turn of the polyline larger than
+  /// this counts as turning back. Must lie in (45, 180]; 180 disables the check.
+  double zigzag_threshold_deg = 150.0;
+  /// Also delete single points where the polyline turns back by more than the threshold while
+  /// its neighbours do not (spikes). CONTACT's documented zig-zag rule only handles pairs, so
+  /// false gives that rule alone; true (default) additionally removes outliers such as the
+  /// flange-tip point at line 222 of Car7216_0001r.whl.
+  bool remove_spikes = true;
+};
+
+/// A profile after reading and repair: points (y_i, z_i) in the profile's own coordinates.
+struct Profile {
+  ProfileKind kind = ProfileKind::kRail;
+  ProfileFormat format = ProfileFormat::kTable;
+  std::string source;       ///< The file name as given (or the name passed to MakeProfile).
+  std::vector<double> y;    ///< Lateral coordinates, mm.
+  std::vector<double> z;    ///< Vertical coordinates (positive down), mm.
+  std::vector<int> lines;   ///< Line in the source file of each point (1-based); for points
+                            ///< from MakeProfile, the 1-based index of the input point.
+  bool mirrored_y = false;  ///< y was mirrored (option mirror_y or the Simpack file's mirror.y).
+  bool mirrored_z = false;  ///< z was mirrored (option, auto-detection or the Simpack file).
+  bool reversed = false;    ///< The point order was reversed to run as documented above.
+  bool smoothed = false;    ///< The points are the values of the smoothing spline.
+  /// Everything repaired or ignored, one sentence each, naming the file and its line numbers.
+  std::vector<std::string> warnings;
+
+  std::size_t size() const { return y.size(); }
+  /// Length of the polyline through the points, mm.
+  double PolylineLength() const;
+};
+
+/// Points as they stand in a file, before any of the repairs of ReadProfile. Simpack in-file
+/// processing (units.len.f, shift, bounds, point.dist.min, mirror.y/z, inversion) is applied, as
+/// CONTACT applies it before its own options.
+struct ProfilePoints {
+  ProfileFormat format = ProfileFormat::kTable;
+  std::string source;
+  std::vector<double> y;
+  std::vector<double> z;
+  std::vector<int> lines;  ///< 1-based line of each point.
+  bool mirrored_y = false;
+  bool mirrored_z = false;
+  /// What the file says it is: Simpack's header "type" (0 rail, 1 wheel); empty otherwise.
+  std::optional<ProfileKind> declared_kind;
+  std::vector<std::string> warnings;
+};
+
+/// Rail or wheel as suggested by the extension: .prr/.ban rail, .prw/.whl wheel (any case).
+std::optional<ProfileKind> ProfileKindFromExtension(const std::string& path);
+
+/// The format used for `path`: by extension (.prr/.prw Simpack, .ban/.whl MiniProf, .csv
+/// table); for other extensions by content (Simpack block keywords, MiniProf header keys),
+/// defaulting to a table. Throws InputError if the file cannot be opened.
+ProfileFormat DetectProfileFormat(const std::string& path);
+
+/// Parses a profile file without repairing it. Throws wrc::InputError (message
+/// "<file>:<line>: ...") for a missing or empty file, a value that is not a number or not finite
+/// (NaN, Inf) in the data section, or a data section that cannot be found.
+///
+/// Format details:
+///  - Simpack: comments start with '!' or '%' (outside quotes); points are the rows "y z
+///    [weight]" between point.begin and point.end; weights are ignored (with a warning if not 1).
+///    A non-zero "rotate" is refused, a non-zero approx.smooth ignored with a warning.
+///  - MiniProf: the first two columns are y (MiniProf's X) and z (MiniProf's Y). The data
+///    section starts at the first line of three successive numeric lines; the lines before are
+///    the header. Numeric lines in the header (the "Sd Sh qR" line of old wheel files, e.g.
+///    avg_wheel.whl line 7) are ignored with a warning. In the data section, lines starting with a
+///    double quote are switched-off points and skipped with a warning; '%', '!' and (after the
+///    numbers) '"' start comments; other text after the numbers of a data line is ignored with a
+///    warning; any other text is an error.
+///  - Table: columns separated by commas, semicolons, tabs or spaces (with ';' as separator a
+///    decimal comma is accepted); '#', '%' and '!' start comments; non-numeric lines are allowed
+///    only before the first numeric line (a header). The first two columns are y and z.
+ProfilePoints ReadProfilePoints(const std::string& path);
+
+/// Reads `path` (ReadProfilePoints), then repairs it with RepairProfile.
+Profile ReadProfile(const std::string& path, ProfileKind kind, const ProfileOptions& options = {});
+
+/// The repairs, in CONTACT's order:
+///  1. mirror y (option), mirror z (option or auto-detection, see ProfileOptions::mirror_z);
+///  2. drop exact repeats of the previous point (warning);
+///  3. reverse the order if needed (see file comment);
+///  4. zig-zags: where two successive points both turn the polyline by more than the threshold,
+///     the pair is replaced by its average (CONTACT's rule; avg_HR.BAN loses one point); a single
+///     point turning by more than the threshold (a spike) is deleted unless remove_spikes is
+///     false (a wrc extension); warnings;
+///  5. loops: where the polyline crosses itself, a loop shorter than 2 mm (a stitching artefact)
+///     is cut out at the crossing (warning); a longer loop is an error, as in CONTACT;
+///  6. checks: at least 4 points remain; the length is between 5 and 500 mm as CONTACT requires
+///     (this catches profiles in m or inches);
+///  7. smoothing (ProfileOptions::smoothing).
+/// Throws InputError naming the file (and lines) when a check fails or an option is invalid.
+Profile RepairProfile(ProfilePoints points, ProfileKind kind, const ProfileOptions& options = {});
+
+/// Builds a profile from coordinates in memory and repairs it like a file; `name` stands in for
+/// the file name in messages, and "lines" are the 1-based indices of the input points. Throws
+/// InputError for different sizes, non-finite values or a failed check.
+Profile MakeProfile(const std::vector<double>& y, const std::vector<double>& z, ProfileKind kind,
+                    const ProfileOptions& options = {}, const std::string& name = "<memory>");
+
+/// A point or direction in the profile plane.
+struct ProfileVector {
+  double y = 0.0;
+  double z = 0.0;
+};
+
+/// Result of ProfileSpline::ZAtY.
+struct ProfileHeight {
+  enum class Status {
+    kInside,       ///< Exactly one point of the profile has this y.
+    kMultiValued,  ///< Several points have this y (vertical or overhanging parts); z and s are
+                   ///< those of the surface facing the other body: smallest z on a rail,
+                   ///< largest z on a wheel.
+    kOutside,      ///< No point of the profile has this y; z and s are NaN.
+  };
+  Status status = Status::kOutside;
+  double z = 0.0;  ///< Height at y, mm (NaN when outside).
+  double s = 0.0;  ///< Arc length at that point, mm (NaN when outside).
+  /// True unless outside.
+  bool found() const { return status != Status::kOutside; }
+};
+
+/// The profile as a parametric curve (y(s), z(s)), with s the arc length in mm from the first
+/// point (0 ≤ s ≤ length()), built from two GSL natural cubic splines through the points.
+/// The knots s_i start as the chord lengths of the polyline and are refined until each knot
+/// interval's spline arc length equals its parameter length (to 1e-10 of the profile length),
+/// so s is the arc length of the curve itself. The curve passes through every point of the
+/// profile (smoothing, if any, was applied to the points by RepairProfile). Thread-safe for
+/// concurrent const use. Copyable.
+class ProfileSpline {
+ public:
+  /// Throws InputError for fewer than 4 points or coincident successive points.
+  explicit ProfileSpline(const Profile& profile);
+  ~ProfileSpline();
+  ProfileSpline(const ProfileSpline& other);
+  ProfileSpline& operator=(const ProfileSpline& other);
+  ProfileSpline(ProfileSpline&& other) noexcept;
+  ProfileSpline& operator=(ProfileSpline&& other) noexcept;
+
+  ProfileKind kind() const;
+  /// Total arc length, mm.
+  double length() const;
+  /// Arc length s_i of each profile point.
+  const std::vector<double>& knots() const;
+  /// Smallest and largest y over the whole curve (not only the points), mm.
+  double YMin() const;
+  double YMax() const;
+
+  /// Position (y(s), z(s)). s outside [0, length()] throws std::out_of_range.
+  ProfileVector PositionAt(double s) const;
+  /// Unit tangent in the direction of increasing s.
+  ProfileVector TangentAt(double s) const;
+  /// Unit normal pointing out of the body's material (towards the other body): upwards (−z) on a
+  /// rail's running surface, downwards (+z) on a wheel's tread.
+  ProfileVector NormalAt(double s) const;
+  /// Surface inclination in rad, as CONTACT's: the angle from the +y axis to the surface, with
+  /// the surface followed in the direction of increasing y for a rail; for a wheel the same
+  /// formula applied to the reversed tangent, so both use atan(dz/dy) where single-valued.
+  /// On a rail: negative on the gauge face, about 0 on top, up to +90° on the field side.
+  double InclinationAt(double s) const;
+  /// Signed curvature in 1/mm: positive where the body is convex (rail head, wheel tread of a
+  /// circular roller), negative where concave (a groove).
+  double CurvatureAt(double s) const;
+
+  /// Every s in [0, length()] with y(s) = y, ascending; empty outside the profile.
+  std::vector<double> SAtY(double y) const;
+  /// z at lateral position y (see ProfileHeight for the statuses).
+  ProfileHeight ZAtY(double y) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace wrc
