@@ -12,6 +12,7 @@
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/halfspace.h"
+#include "wrc/wheelrail.h"
 
 namespace wrc::cli {
 namespace {
@@ -20,6 +21,27 @@ using nlohmann::json;
 
 int ExitCodeFor(SolverStatus s) {
   return s == SolverStatus::kNotConverged ? kExitNotConverged : kExitOk;
+}
+
+double Seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A short human-readable summary of the JSON result.
+void PrintHuman(const json& j) {
+  std::cout << "status " << j["status"].get<std::string>() << "\n";
+  if (j.contains("rail_forces_track")) {
+    const json& f = j["rail_forces_track"];
+    std::cout << "forces on the rail (track): fx " << f["fx"] << " N, fy " << f["fy"]
+              << " N, fz " << f["fz"] << " N\nwheelset z " << j["wheelset"]["z"] << " mm\n";
+  }
+  int n = 0;
+  for (const json& p : j["patches"]) {
+    std::cout << "patch " << ++n << ": fn " << p["fn"] << " N, fx " << p["fx"] << " N, fs "
+              << p["fs"] << " N, mn " << p["mn"] << " N.mm, pmax " << p["pmax"]
+              << " N/mm2, contact " << p["n_contact"] << ", slip " << p["n_slip"] << "\n";
+  }
+  std::cout << "time " << j["timing_s"]["total"] << " s\n";
 }
 
 json HalfspaceJson(const HalfspaceResult& r, double seconds) {
@@ -72,6 +94,85 @@ void WriteHalfspaceFields(const std::filesystem::path& dir, const HalfspaceResul
   std::ofstream(dir / "summary.json") << summary.dump(1) << '\n';
 }
 
+json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
+  return {{a, v(0)}, {b, v(1)}, {c, v(2)}};
+}
+
+json WheelRailJson(const WheelRailResult& r, double seconds) {
+  json forces = Vec(r.force_T, "fx", "fy", "fz");
+  forces.update(Vec(r.moment_T, "mx", "my", "mz"));
+  json patches = json::array();
+  for (const PatchResult& p : r.patches) {
+    patches.push_back({{"fn", p.fn},
+                       {"fx", p.fx},
+                       {"fs", p.fs},
+                       {"mn", p.mn},
+                       {"pmax", p.pmax},
+                       {"n_contact", p.n_contact},
+                       {"n_slip", p.n_slip},
+                       {"n_adh", p.n_adhesion},
+                       {"n_pot", p.n_pot},
+                       {"contact_angle", p.contact_angle},
+                       {"x_tr", p.reference_T(0)},
+                       {"y_tr", p.reference_T(1)},
+                       {"z_tr", p.reference_T(2)},
+                       {"y_r", p.reference_rail(0)},
+                       {"z_r", p.reference_rail(1)},
+                       {"x_w", p.reference_wheel(0)},
+                       {"y_w", p.reference_wheel(1)},
+                       {"z_w", p.reference_wheel(2)},
+                       {"approach", p.approach},
+                       {"cksi", p.cksi},
+                       {"ceta", p.ceta},
+                       {"cphi", p.cphi},
+                       {"iterations",
+                        {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
+  }
+  return {{"status", ToString(r.status)},
+          {"message", r.message},
+          {"wheelset", {{"y", r.y}, {"z", r.z}, {"roll", r.roll}, {"yaw", r.yaw}, {"omega", r.omega}}},
+          {"rail_forces_track", forces},
+          {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
+          {"patches", patches},
+          {"iterations", {{"fz", r.fz_iterations}}},
+          {"timing_s", {{"total", seconds}}}};
+}
+
+// Per patch: fields.csv over the patch grid, and for the curved reference its curve.
+void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResult& r,
+                          const json& summary) {
+  std::filesystem::create_directories(dir);
+  for (std::size_t n = 0; n < r.patches.size(); ++n) {
+    const PatchResult& p = r.patches[n];
+    const std::string stem = "patch" + std::to_string(n + 1);
+    std::ofstream out(dir / (stem + "_fields.csv"));
+    if (!out) throw InputError("--out " + dir.string() + ": cannot write " + stem + "_fields.csv");
+    out << "i,j,x,s,h,pn,px,ps,sx,ss,state\n";
+    out.precision(10);
+    const Grid& g = p.grid;
+    const bool t = !p.px.empty();
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const std::size_t k = g.index(i, j);
+        out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ',' << p.h[k] << ',' << p.pn[k]
+            << ',' << (t ? p.px[k] : 0.0) << ',' << (t ? p.ps[k] : 0.0) << ','
+            << (t ? p.sx[k] : 0.0) << ',' << (t ? p.ss[k] : 0.0) << ','
+            << static_cast<int>(p.state[k]) << '\n';
+      }
+    }
+    if (!p.curve_y.empty()) {
+      std::ofstream curve(dir / (stem + "_curve.csv"));
+      curve << "j,s,y_tr,z_tr,angle\n";
+      curve.precision(10);
+      for (std::size_t j = 0; j < p.curve_y.size(); ++j) {
+        curve << j << ',' << g.y(static_cast<int>(j)) << ',' << p.curve_y[j] << ','
+              << p.curve_z[j] << ',' << p.curve_angle[j] << '\n';
+      }
+    }
+  }
+  std::ofstream(dir / "summary.json") << summary.dump(1) << '\n';
+}
+
 }  // namespace
 
 void AddSolveCommand(CLI::App& app, int* exit_code) {
@@ -86,29 +187,28 @@ void AddSolveCommand(CLI::App& app, int* exit_code) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
       const Case c = LoadCase(*case_path);
-      if (c.type != CaseType::kHalfspace) {
-        throw InputError(*case_path + ": problem.type = \"wheel-rail\" is not implemented yet");
+      SolverStatus status;
+      json j;
+      if (c.type == CaseType::kHalfspace) {
+        const HalfspaceResult r = SolveHalfspace(c);
+        j = HalfspaceJson(r, Seconds(t0));
+        if (!out_dir->empty()) WriteHalfspaceFields(*out_dir, r, j);
+        status = r.status;
+      } else {
+        WheelRailOptions options;
+        options.keep_fields = !out_dir->empty();
+        const WheelRailResult r = SolveWheelRail(c, options);
+        j = WheelRailJson(r, Seconds(t0));
+        if (!out_dir->empty()) WriteWheelRailFields(*out_dir, r, j);
+        status = r.status;
       }
-      const HalfspaceResult r = SolveHalfspace(c);
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const json j = HalfspaceJson(r, seconds);
-      if (!out_dir->empty()) WriteHalfspaceFields(*out_dir, r, j);
       if (*as_json) {
         std::cout << j.dump(1) << '\n';
       } else {
-        std::cout << "status " << j["status"].get<std::string>() << "\n";
-        if (!j["patches"].empty()) {
-          const json& p = j["patches"][0];
-          std::cout << "fn " << p["fn"] << " N, fx " << p["fx"] << " N, fs " << p["fs"]
-                    << " N, mn " << p["mn"] << " N.mm\npmax " << p["pmax"] << " N/mm2, approach "
-                    << p["approach"] << " mm, contact " << p["n_contact"] << " elements, slip "
-                    << p["n_slip"] << "\n";
-        }
-        std::cout << "time " << seconds << " s\n";
+        PrintHuman(j);
       }
-      *exit_code = ExitCodeFor(r.status);
-      if (r.status == SolverStatus::kNotConverged) {
+      *exit_code = ExitCodeFor(status);
+      if (status == SolverStatus::kNotConverged) {
         std::cerr << "wrc solve: " << j["message"].get<std::string>() << '\n';
       }
     } catch (const std::exception& e) {

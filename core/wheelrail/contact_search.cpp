@@ -1,0 +1,112 @@
+#include "core/wheelrail/contact_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wrc::wr {
+namespace {
+
+// The wheel's height along x is a near-parabola z(x) ≈ z0 − (x − x0)²/(2R); three points 1 mm
+// apart locate its top to O(h²/R²) and two refinements make that exact to round-off.
+constexpr double kLocusStep = 1.0;
+
+bool Locate(const PlacedWheel& wheel, double y, double z_rail, double x_guess, LocusSample& out) {
+  double x0 = x_guess;
+  double zc = 0.0, curvature = 0.0;
+  for (int it = 0; it < 3; ++it) {
+    const auto zm = wheel.SurfaceZ(x0 - kLocusStep, y);
+    const auto z0 = wheel.SurfaceZ(x0, y);
+    const auto zp = wheel.SurfaceZ(x0 + kLocusStep, y);
+    if (!zm || !z0 || !zp) return false;
+    // Parabola through the three heights; its vertex is the lowest wheel point (z down).
+    const double d1 = (*zp - *zm) / (2.0 * kLocusStep);
+    const double d2 = (*zp - 2.0 * *z0 + *zm) / (kLocusStep * kLocusStep);
+    if (!(d2 < 0.0)) return false;
+    const double shift = std::clamp(-d1 / d2, -20.0, 20.0);
+    x0 += shift;
+    zc = *z0 - 0.5 * d1 * d1 / d2;
+    curvature = -d2;
+    if (std::fabs(shift) < 1e-9) break;
+  }
+  const auto z_top = wheel.SurfaceZ(x0, y);
+  if (!z_top) return false;
+  out.x = x0;
+  out.gap = z_rail - *z_top;
+  out.curvature = curvature;
+  (void)zc;
+  return true;
+}
+
+}  // namespace
+
+ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step) {
+  ContactSearch search;
+  search.step = step;
+  const int n = static_cast<int>(std::floor(rail.length() / step));
+  search.samples.resize(n + 1);
+  double x_guess = 0.0;
+  for (int k = 0; k <= n; ++k) {
+    LocusSample& sample = search.samples[k];
+    sample.s = k * step;
+    const Eigen::Vector2d p = rail.PositionAt(sample.s);
+    sample.y = p(0);
+    sample.z = p(1);
+    sample.alpha = rail.InclinationAt(sample.s);
+    sample.valid = Locate(wheel, sample.y, sample.z, x_guess, sample);
+    if (sample.valid) x_guess = sample.x;
+  }
+  return search;
+}
+
+double LocusHalfLength(const LocusSample& sample, double dz) {
+  const double g0 = sample.gap - dz;
+  if (!sample.valid || g0 >= 0.0) return 0.0;
+  return std::sqrt(2.0 * -g0 / sample.curvature);
+}
+
+double LocusWeight(const LocusSample& sample, double dz, bool quadratic) {
+  const double a = LocusHalfLength(sample, dz);
+  if (a == 0.0) return 0.0;
+  const double g0 = sample.gap - dz;
+  return quadratic ? (16.0 / 15.0) * a * g0 * g0 : (4.0 / 3.0) * a * -g0;
+}
+
+std::vector<PatchExtent> FindPatches(const ContactSearch& search, double dz,
+                                     double combine_distance) {
+  // Interpenetration regions: runs of samples with negative gap.
+  std::vector<PatchExtent> regions;
+  const int n = static_cast<int>(search.samples.size());
+  for (int k = 0; k < n; ++k) {
+    if (LocusHalfLength(search.samples[k], dz) == 0.0) continue;
+    if (regions.empty() || regions.back().last != k - 1) {
+      regions.push_back({k, k, 1e300, -1e300});
+    }
+    PatchExtent& r = regions.back();
+    r.last = k;
+    const double a = LocusHalfLength(search.samples[k], dz);
+    r.x_min = std::min(r.x_min, search.samples[k].x - a);
+    r.x_max = std::max(r.x_max, search.samples[k].x + a);
+  }
+  // Greedy combination of neighbours along the rail.
+  std::vector<PatchExtent> patches;
+  for (const PatchExtent& r : regions) {
+    if (!patches.empty()) {
+      PatchExtent& p = patches.back();
+      const LocusSample& a = search.samples[p.last];
+      const LocusSample& b = search.samples[r.first];
+      const double lateral = std::hypot(b.y - a.y, b.z - a.z);
+      const double longitudinal = std::max({0.0, r.x_min - p.x_max, p.x_min - r.x_max});
+      if (std::hypot(lateral, longitudinal) <= combine_distance) {
+        p.last = r.last;
+        p.x_min = std::min(p.x_min, r.x_min);
+        p.x_max = std::max(p.x_max, r.x_max);
+        continue;
+      }
+    }
+    patches.push_back(r);
+  }
+  std::reverse(patches.begin(), patches.end());  // field side (large s) first
+  return patches;
+}
+
+}  // namespace wrc::wr

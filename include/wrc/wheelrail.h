@@ -1,0 +1,74 @@
+#pragma once
+/// @file wheelrail.h
+/// One wheel on one rail (SPEC §2, `type = "wheel-rail"`): contact search, contact patches with
+/// a planar or curved reference (paper §2.6 and §3), normal and tangential solution per patch,
+/// and the total forces on the rail (SPEC §3).
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "wrc/case.h"
+#include "wrc/grid.h"
+#include "wrc/normal_solver.h"
+#include "wrc/tangential_solver.h"
+
+namespace wrc {
+
+/// Options of a wheel–rail solve.
+struct WheelRailOptions {
+  NormalOptions normal;
+  TangentialOptions tangential;
+  /// Prescribed vertical force met to this relative tolerance. CONTACT prints 4 digits; 1e-7
+  /// keeps FZ(TR) exact to far below them while Brent needs only a few more steps.
+  double fz_tolerance = 1e-7;
+  int max_fz_iterations = 100;
+  /// Keep the grids and fields of each patch in the result (for `wrc solve --out`).
+  bool keep_fields = false;
+};
+
+/// One contact patch, in its contact reference frame (x along the track, s lateral along the
+/// reference surface, n into the rail).
+struct PatchResult {
+  double fn = 0.0, fx = 0.0, fs = 0.0, mn = 0.0;  ///< Forces on the rail N, spin moment N·mm.
+  double pmax = 0.0;                              ///< N/mm².
+  int n_contact = 0, n_slip = 0, n_adhesion = 0, n_pot = 0;
+  double contact_angle = 0.0;                   ///< Reference angle δ, rad.
+  Eigen::Vector3d reference_T = Eigen::Vector3d::Zero();  ///< Contact reference, track frame.
+  Eigen::Vector2d reference_rail = Eigen::Vector2d::Zero();   ///< (y_r, z_r).
+  Eigen::Vector3d reference_wheel = Eigen::Vector3d::Zero();  ///< (x_w, y_w, z_w).
+  double approach = 0.0;  ///< Largest interpenetration of the undeformed surfaces, mm.
+  double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< Creepages at the reference (planar).
+  Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Force on the rail, track frame.
+  Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the reference, track frame.
+  SolverStatus status = SolverStatus::kConverged;
+  int normal_iterations = 0, tangential_iterations = 0;
+
+  // Fields, when WheelRailOptions::keep_fields: the grid in (x, s) relative to the reference,
+  // per element undeformed distance, pressure, tractions, slip and state; for the curved
+  // reference also the reference curve (y, z, angle per grid column, track frame).
+  Grid grid;
+  std::vector<double> h, pn, px, ps, sx, ss;
+  std::vector<ElementState> state;
+  std::vector<double> curve_y, curve_z, curve_angle;
+};
+
+/// Result of a wheel–rail solve (SPEC §3 JSON).
+struct WheelRailResult {
+  SolverStatus status = SolverStatus::kConverged;
+  std::string message;
+  double y = 0.0, z = 0.0, roll = 0.0, yaw = 0.0, omega = 0.0;  ///< Wheelset state used.
+  Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Total force on the rail, track frame.
+  Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the rail origin, track frame.
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   ///< Total force on the rail, wheelset frame.
+  std::vector<PatchResult> patches;  ///< Field side first.
+  int fz_iterations = 0;
+};
+
+/// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
+/// patches and solves them; with `state.fz` it finds the wheelset height z that gives that
+/// vertical force on the rail. Throws InputError for bad input (unreadable profiles, a pose
+/// that puts the wheel outside the rail profile); no contact is a status, not an error.
+WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options = {});
+
+}  // namespace wrc
