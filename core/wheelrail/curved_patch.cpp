@@ -1,12 +1,199 @@
-#include <stdexcept>
+// The curved reference surface of the paper (§3.2–3.7).
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
 
 #include "core/wheelrail/patch.h"
-#include "wrc/errors.h"
+#include "core/wheelrail/patch_common.h"
 
 namespace wrc::wr {
+namespace {
 
-PatchResult SolveCurvedPatch(const PatchContext&, const PatchExtent&) {
-  throw InputError("method.reference = \"curved\" is not available yet");
+// Track-frame point of the wheel surface at profile arc length s_w that lies in the plane
+// x = x_target (paper §3.3): the wheel particle found there is not in the principal profile
+// (x_w = 0) when the wheelset yaws, so its x in wheelset coordinates is corrected by the
+// mismatch until it lands in the plane.
+std::optional<Eigen::Vector3d> WheelPointInPlane(const PlacedWheel& wheel, double s_w,
+                                                 double x_target) {
+  const ProfileSpline& sp = wheel.spline();
+  if (s_w < 0.0 || s_w > sp.length()) return std::nullopt;
+  const ProfileVector pw = sp.PositionAt(s_w);
+  const double radius = wheel.nominal_radius() + pw.z;
+  const double axial = wheel.profile_offset() + pw.y;
+  double x_w = x_target - wheel.p_TWo_T()(0);
+  for (int it = 0; it < 30; ++it) {
+    if (std::fabs(x_w) >= radius) return std::nullopt;
+    const Eigen::Vector3d q(x_w, axial, std::sqrt(radius * radius - x_w * x_w));
+    const Eigen::Vector3d p = wheel.p_TWo_T() + wheel.R_TW() * q;
+    const double mismatch = p(0) - x_target;
+    if (std::fabs(mismatch) < 1e-12) return p;
+    x_w -= mismatch;
+  }
+  return std::nullopt;
+}
+
+// Fraction θ of the rail in the mean surface, Eq. 18b: the share of the normal displacement
+// that body 1 (the rail) takes, (1 − ν1)/G1 against (1 − ν2)/G2.
+double RailShare(const Case& c) {
+  const double a = (1.0 - c.rail_material.poisson) * c.wheel_material.shear_modulus;
+  const double b = (1.0 - c.wheel_material.poisson) * c.rail_material.shear_modulus;
+  return a / (a + b);
+}
+
+}  // namespace
+
+PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent) {
+  const Case& c = *ctx.c;
+  const PlacedRail& rail = *ctx.rail;
+  const PlacedWheel& wheel = *ctx.wheel;
+  const PatchReference ref = FindReference(ctx, extent);
+  const Eigen::Vector2d p_c = rail.PositionAt(ref.s);
+  const Eigen::Vector3d p_c3(ref.x, p_c(0), p_c(1));
+  // The planar reference frame (x̄, s̄, n̄): forces are aggregated in it (§3.7).
+  const Eigen::Vector2d t_bar(std::cos(ref.angle), std::sin(ref.angle));
+  const Eigen::Vector2d n_bar(-std::sin(ref.angle), std::cos(ref.angle));
+  const Eigen::Vector3d t_bar3(0.0, t_bar(0), t_bar(1)), n_bar3(0.0, n_bar(0), n_bar(1));
+
+  // The wheel point opposite the reference: along n̄ from the rail reference point. Wheel
+  // profiles run with y descending, so the same physical direction is −s on the wheel.
+  const auto t_q = wheel.IntersectLine(p_c3, n_bar3, 0.0);
+  const Eigen::Vector3d q_c = p_c3 + (t_q ? *t_q : 0.0) * n_bar3;
+  const ProfileHeight wheel_ref = wheel.spline().ZAtY(wheel.ToWheelProfile(q_c)(0));
+  const double s_cp_wheel = wheel_ref.found() ? wheel_ref.s : 0.0;
+
+  // Lateral extent along the rail, relative to the reference.
+  const auto& samples = ctx.search->samples;
+  const Grid grid = PatchGrid(c.grid.dx, c.grid.ds, extent.x_min - ref.x, extent.x_max - ref.x,
+                              samples[extent.first].s - ref.s, samples[extent.last].s - ref.s);
+
+  // The curved reference (§3.3, Eq. 18): mean of rail and wheel at equal arc-length steps.
+  const double theta = RailShare(c);
+  const int ny = grid.ny;
+  std::vector<Eigen::Vector2d> m(ny), t(ny), n(ny);
+  std::vector<double> delta(ny), s_rail(ny);
+  std::vector<bool> valid(ny, false);
+  const double eps = 1e-4;  // mm, finite-difference step for the wheel's tangent
+  for (int j = 0; j < ny; ++j) {
+    const double s_off = grid.y(j);
+    s_rail[j] = std::clamp(ref.s + s_off, 0.0, rail.length());
+    const Eigen::Vector2d pr = rail.PositionAt(s_rail[j]);
+    const Eigen::Vector2d tr = rail.TangentAt(s_rail[j]);
+    const double s_w = s_cp_wheel - s_off;
+    const auto pw = WheelPointInPlane(wheel, s_w, ref.x);
+    const auto pw_a = WheelPointInPlane(wheel, s_w + eps, ref.x);
+    const auto pw_b = WheelPointInPlane(wheel, s_w - eps, ref.x);
+    const bool inside = ref.s + s_off >= 0.0 && ref.s + s_off <= rail.length();
+    if (inside && pw && pw_a && pw_b) {
+      const Eigen::Vector2d tw = (pw_b->tail<2>() - pw_a->tail<2>()).normalized();
+      m[j] = theta * pr + (1.0 - theta) * pw->tail<2>();
+      t[j] = (theta * tr + (1.0 - theta) * tw).normalized();
+      valid[j] = true;
+    } else {
+      m[j] = pr;
+      t[j] = tr;
+    }
+    n[j] = Eigen::Vector2d(-t[j](1), t[j](0));
+    delta[j] = std::atan2(t[j](1), t[j](0));
+  }
+
+  // Undeformed distance along the local normal n_j (Eq. 10a; Eq. 19 is its first-order form
+  // h̄·cos(δ_j − δ̄)), and the grid-based rigid slip (§3.5) with the mid-plane correction
+  // (§3.6, Eq. 20).
+  const double v = ctx.velocity;
+  const bool midplane = c.effects.midplane_correction;
+  std::vector<double> h(grid.size(), kNoContactDistance), wx(grid.size(), 0.0),
+      wy(grid.size(), 0.0), mu(grid.size());
+  for (int j = 0; j < ny; ++j) {
+    const Eigen::Vector3d t3(0.0, t[j](0), t[j](1)), n3(0.0, n[j](0), n[j](1));
+    const double mu_j = c.friction.MuAt(delta[j]);
+    std::optional<double> sr;
+    if (valid[j]) sr = rail.IntersectLine(m[j], n[j], s_rail[j]);
+    const double t_rail = sr ? (rail.PositionAt(*sr) - m[j]).dot(n[j]) : 0.0;
+    for (int i = 0; i < grid.nx; ++i) {
+      const std::size_t k = grid.index(i, j);
+      mu[k] = mu_j;
+      if (!sr) continue;
+      const Eigen::Vector3d m3(ref.x + grid.x(i), m[j](0), m[j](1));
+      const auto t_wheel = wheel.IntersectLine(m3, n3, t_rail);
+      if (!t_wheel) continue;
+      h[k] = t_rail - *t_wheel;
+      if (!c.effects.tangential) continue;
+      // Material velocities of the rail point P and the wheel point Q of this element, in the
+      // track frame that travels with the wheelset (the rail moves by −V).
+      const Eigen::Vector3d q = m3 + *t_wheel * n3;
+      const Eigen::Vector3d v_p(-v, 0.0, 0.0);
+      const Eigen::Vector3d v_q = wheel.MaterialVelocity(q);
+      double w_x;
+      if (midplane) {
+        // Eq. 20: measure the longitudinal slip along the direction half-way between the two
+        // velocities, which removes the artificial slip −V(1 − cos θ) of a prismatic surface.
+        const Eigen::Vector3d v_mid = 0.5 * (v_p.normalized() + v_q.normalized());
+        const Eigen::Vector3d tx_prime = -v_mid.normalized();
+        const double cs = tx_prime.dot(Eigen::Vector3d::UnitX());
+        const double sn = tx_prime.dot(n3);
+        auto along = [&](const Eigen::Vector3d& vel) {
+          return cs * vel(0) + sn * vel.dot(n3);  // x' component of R^T·v, Eq. 20d
+        };
+        w_x = along(v_p) - along(v_q);
+      } else {
+        w_x = v_p(0) - v_q(0);
+      }
+      wx[k] = w_x / v;
+      wy[k] = (v_p - v_q).dot(t3) / v;
+    }
+  }
+
+  PatchResult result;
+  // Creepages at the reference, for information (the solve uses the grid-based rigid slip).
+  if (c.effects.tangential) {
+    const Eigen::Vector3d w = Eigen::Vector3d(-v, 0.0, 0.0) - wheel.MaterialVelocity(q_c);
+    result.cksi = w(0) / v;
+    result.ceta = w.dot(t_bar3) / v;
+    result.cphi = -wheel.AngularVelocity().dot(n_bar3) / v;
+  }
+  SolveOnGrid(ctx, grid, h, wx, wy, mu, result);
+
+  // Aggregation (§3.7, Eq. 21–23): tractions rotated from the local (x, s_j, n_j) directions to
+  // the reference frame (x̄, s̄, n̄), moments with the lever arm of each element on the curved
+  // reference surface relative to the reference point.
+  const double area = grid.element_area();
+  Eigen::Vector3d force_bar = Eigen::Vector3d::Zero(), moment_bar = Eigen::Vector3d::Zero();
+  for (int j = 0; j < ny; ++j) {
+    const Eigen::Vector2d d = m[j] - p_c;
+    const double s_lever = d.dot(t_bar), n_lever = d.dot(n_bar);
+    const double cos_d = std::cos(delta[j] - ref.angle), sin_d = std::sin(delta[j] - ref.angle);
+    for (int i = 0; i < grid.nx; ++i) {
+      const std::size_t k = grid.index(i, j);
+      const double pn = result.pn[k];
+      const double px = result.px.empty() ? 0.0 : result.px[k];
+      const double ps = result.ps.empty() ? 0.0 : result.ps[k];
+      // Local s_j, n_j expressed in s̄, n̄: s_j = cos·s̄ + sin·n̄, n_j = −sin·s̄ + cos·n̄.
+      const Eigen::Vector3d p(px, cos_d * ps - sin_d * pn, sin_d * ps + cos_d * pn);
+      const Eigen::Vector3d r(grid.x(i), s_lever, n_lever);
+      force_bar += p * area;
+      moment_bar += r.cross(p) * area;
+    }
+  }
+  result.fx = force_bar(0);
+  result.fs = force_bar(1);
+  result.fn = force_bar(2);
+  result.mn = moment_bar(2);
+  result.force_T = force_bar(0) * Eigen::Vector3d::UnitX() + force_bar(1) * t_bar3 +
+                   force_bar(2) * n_bar3;
+  result.moment_T = moment_bar(0) * Eigen::Vector3d::UnitX() + moment_bar(1) * t_bar3 +
+                    moment_bar(2) * n_bar3;
+  FillReferenceOutputs(ctx, ref, p_c3, result);
+  if (ctx.options->keep_fields) {
+    for (int j = 0; j < ny; ++j) {
+      result.curve_y.push_back(m[j](0));
+      result.curve_z.push_back(m[j](1));
+      result.curve_angle.push_back(delta[j]);
+    }
+  } else {
+    ClearFields(result);
+  }
+  return result;
 }
 
 }  // namespace wrc::wr
