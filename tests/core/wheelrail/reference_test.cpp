@@ -1,0 +1,104 @@
+// Wheel–rail cases of ../shared/reference against CONTACT (issues 4 and 5).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "wrc/case.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<fs::path> Cases(const std::string& group) {
+  std::vector<fs::path> cases;
+  const fs::path dir = fs::path(WRC_SHARED_DIR) / "reference" / "cases" / group;
+  if (fs::exists(dir)) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() == ".toml") cases.push_back(e.path());
+    }
+  }
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+json Reference(const fs::path& toml) {
+  fs::path p = toml;
+  p.replace_extension(".contact.json");
+  return json::parse(std::ifstream(p));
+}
+
+// Totals on the rail within `rtol` of the vertical load, same number of patches.
+void ExpectTotals(const WheelRailResult& r, const json& ref, double rtol) {
+  const json& f = ref["rail_forces_track"];
+  const double load = std::fabs(f["fz"].get<double>());
+  EXPECT_EQ(ToString(r.status), ref["status"].get<std::string>());
+  ASSERT_EQ(r.patches.size(), ref["patches"].size());
+  EXPECT_NEAR(r.force_T(0), f["fx"].get<double>(), rtol * load);
+  EXPECT_NEAR(r.force_T(1), f["fy"].get<double>(), rtol * load);
+  EXPECT_NEAR(r.force_T(2), f["fz"].get<double>(), rtol * load);
+}
+
+class PlanarReference : public testing::TestWithParam<fs::path> {};
+class CurvedReference : public testing::TestWithParam<fs::path> {};
+
+// Issue 4: total forces within 1 % of the vertical load, reference location within 0.2 mm and
+// angle within 0.5°, same number of patches, at the same grid.
+TEST_P(PlanarReference, MatchesContact) {
+  const json ref = Reference(GetParam());
+  const WheelRailResult r = SolveWheelRail(LoadCase(GetParam()));
+  ExpectTotals(r, ref, 0.01);
+  for (std::size_t k = 0; k < r.patches.size() && k < ref["patches"].size(); ++k) {
+    const json& rp = ref["patches"][k];
+    const PatchResult& p = r.patches[k];
+    EXPECT_NEAR(p.reference_T(1), rp["y_tr"].get<double>(), 0.2) << "patch " << k;
+    EXPECT_NEAR(p.reference_T(2), rp["z_tr"].get<double>(), 0.2) << "patch " << k;
+    EXPECT_NEAR(p.reference_T(0), rp["x_tr"].get<double>(), 0.2) << "patch " << k;
+    EXPECT_NEAR(p.contact_angle, rp["contact_angle"].get<double>(), 0.5 * kPi / 180.0);
+  }
+}
+
+// Issue 5: total forces within 1 % of the vertical load, per-patch fn within 1 %.
+TEST_P(CurvedReference, MatchesContact) {
+  const json ref = Reference(GetParam());
+  const WheelRailResult r = SolveWheelRail(LoadCase(GetParam()));
+  ExpectTotals(r, ref, 0.01);
+  for (std::size_t k = 0; k < r.patches.size() && k < ref["patches"].size(); ++k) {
+    const double fn = ref["patches"][k]["fn"].get<double>();
+    EXPECT_NEAR(r.patches[k].fn, fn, 0.01 * std::fabs(fn)) << "patch " << k;
+  }
+}
+
+std::string Name(const testing::TestParamInfo<fs::path>& info) {
+  std::string s = info.param.stem().string();
+  for (char& ch : s) {
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  }
+  return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(MBench, PlanarReference, testing::ValuesIn(Cases("mbench_planar")), Name);
+INSTANTIATE_TEST_SUITE_P(MBench, CurvedReference, testing::ValuesIn(Cases("mbench_curved")), Name);
+INSTANTIATE_TEST_SUITE_P(VarFric, CurvedReference, testing::ValuesIn(Cases("mbench_varfric")),
+                         Name);
+INSTANTIATE_TEST_SUITE_P(Groove, CurvedReference, testing::ValuesIn(Cases("groove")), Name);
+INSTANTIATE_TEST_SUITE_P(HeavyHaul, CurvedReference, testing::ValuesIn(Cases("heavy_haul")), Name);
+
+TEST(WheelRailReference, AllGroupsPresent) {
+  EXPECT_EQ(Cases("mbench_planar").size(), 6u);
+  EXPECT_EQ(Cases("mbench_curved").size(), 6u);
+  EXPECT_EQ(Cases("mbench_varfric").size(), 2u);
+  EXPECT_EQ(Cases("groove").size(), 3u);
+  EXPECT_EQ(Cases("heavy_haul").size(), 3u);
+}
+
+}  // namespace
+}  // namespace wrc
