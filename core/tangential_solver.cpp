@@ -35,6 +35,9 @@ void Validate(const SteadyRollingOperator& op, const TangentialProblem& pb) {
   }
 }
 
+// Exterior elements downstream of each row's contact that take part in the sweep (see below).
+constexpr int kSinkElements = 4;
+
 struct LocalResult {
   double px, py;
   bool slip;
@@ -158,7 +161,24 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   const InfluenceCoefficients& ayy = op.yy();
   const InfluenceCoefficients& axy = op.xy();
 
-  const int b = box_i0;  // first column of the cumulative parametrisation
+  // Contact range of each row of the box.
+  std::vector<int> row_lo(box_j1 - box_j0 + 1, nx), row_hi(box_j1 - box_j0 + 1, -1);
+  for (int j = box_j0; j <= box_j1; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (pb.pressure[g.index(i, j)] > 0.0) {
+        row_lo[j - box_j0] = std::min(row_lo[j - box_j0], i);
+        row_hi[j - box_j0] = std::max(row_hi[j - box_j0], i);
+      }
+    }
+  }
+  const double* xx_values = axx.values().data();
+  const double* yy_values = ayy.values().data();
+  const double* xy_values = axy.values().data();
+  const int coeff_nx = 2 * nxe - 1;
+  auto coeff_index = [&](int di, int dj) {
+    return static_cast<std::size_t>(di + nxe - 1) +
+           static_cast<std::size_t>(coeff_nx) * static_cast<std::size_t>(dj + ny - 1);
+  };
   const int bw = box_i1 - box_i0 + 1;
   ws.sx_box.resize(static_cast<std::size_t>(bw) * (box_j1 - box_j0 + 1));
   ws.sy_box.resize(ws.sx_box.size());
@@ -179,7 +199,13 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     }
     double max_change = 0.0;
     for (int j = box_j0; j <= box_j1; ++j) {
-      for (int i = box_i1 - 1; i >= box_i0; --i) {
+      // Elements b..hi of the row: its contact range and a few exterior elements downstream of
+      // it. Shifts that reach those exterior elements are undone when they are solved
+      // (p = 0); letting them absorb the shifts converges 2–3x faster on a Carter strip than
+      // ending the cumulative sum at the row's last contact element, while each one costs an
+      // update of the slip field, so only kSinkElements of them are used.
+      const int b = std::max(box_i0, row_lo[j - box_j0] - kSinkElements);
+      for (int i = row_hi[j - box_j0]; i >= b; --i) {
         const std::size_t I = g.index(i, j);
         const std::size_t E = ext_index(i, j);
         const double old_px = ws.px_ext[E], old_py = ws.py_ext[E];
@@ -205,14 +231,27 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
           ws.py_ext[ext_index(m, j)] += dpy;
         }
         // Slip change at (k, l): Σ_(m=b..i) [A(k−m) − A(k+1−m)]·Δ/δq = [A(k−i) − A(k−b+1)]·Δ/δq.
+        // Only the slip of elements in contact is read before the next FFT refresh, so only
+        // the contact range of each row is corrected; the coefficients of a row are contiguous.
         for (int l = box_j0; l <= box_j1; ++l) {
-          for (int k = box_i0; k < box_i1; ++k) {
-            const int dj = l - j;
-            const double cxx = (axx.at(k - i, dj) - axx.at(k - b + 1, dj)) * inv_dq;
-            const double cyy = (ayy.at(k - i, dj) - ayy.at(k - b + 1, dj)) * inv_dq;
-            const double cxy = (axy.at(k - i, dj) - axy.at(k - b + 1, dj)) * inv_dq;
-            ws.sx_box[box_index(k, l)] += cxx * dpx + cxy * dpy;
-            ws.sy_box[box_index(k, l)] += cxy * dpx + cyy * dpy;
+          const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
+          if (hi < lo) continue;
+          const int dj = l - j;
+          const std::size_t a0 = coeff_index(lo - i, dj), a1 = coeff_index(lo - b + 1, dj);
+          const double* xx0 = xx_values + a0;
+          const double* xx1 = xx_values + a1;
+          const double* yy0 = yy_values + a0;
+          const double* yy1 = yy_values + a1;
+          const double* xy0 = xy_values + a0;
+          const double* xy1 = xy_values + a1;
+          double* sx_row = ws.sx_box.data() + box_index(lo, l);
+          double* sy_row = ws.sy_box.data() + box_index(lo, l);
+          const double ax = dpx * inv_dq, ay = dpy * inv_dq;
+          const int count = hi - lo + 1;
+          for (int t = 0; t < count; ++t) {
+            const double cxx = xx0[t] - xx1[t], cyy = yy0[t] - yy1[t], cxy = xy0[t] - xy1[t];
+            sx_row[t] += cxx * ax + cxy * ay;
+            sy_row[t] += cxy * ax + cyy * ay;
           }
         }
       }

@@ -121,7 +121,7 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
       const auto t_wheel = wheel.IntersectLine(m3, n3, t_rail);
       if (!t_wheel) continue;
       h[k] = t_rail - *t_wheel;
-      if (!c.effects.tangential) continue;
+      if (!ctx.tangential) continue;
       // Material velocities of the rail point P and the wheel point Q of this element, in the
       // track frame that travels with the wheelset (the rail moves by −V).
       const Eigen::Vector3d q = m3 + *t_wheel * n3;
@@ -149,7 +149,7 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
 
   PatchResult result;
   // Creepages at the reference, for information (the solve uses the grid-based rigid slip).
-  if (c.effects.tangential) {
+  if (ctx.tangential) {
     const Eigen::Vector3d w = Eigen::Vector3d(-v, 0.0, 0.0) - wheel.MaterialVelocity(q_c);
     result.cksi = w(0) / v;
     result.ceta = w.dot(t_bar3) / v;

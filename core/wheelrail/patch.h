@@ -17,6 +17,9 @@ struct PatchContext {
   double velocity = 0.0;
   CombinedElasticity material;
   const WheelRailOptions* options = nullptr;
+  /// Solve the tangential problem (the case asks for it and this is not a normal-only pass of
+  /// the vertical force iteration).
+  bool tangential = true;
 };
 
 /// Solves one patch with the planar contact approach (paper §2.6, Table 1 methods 2–8).

@@ -96,7 +96,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   result.pmax = ns.pmax;
   result.n_contact = ns.n_contact;
 
-  const bool tangential = ctx.c->effects.tangential && normal.status != SolverStatus::kNoContact;
+  const bool tangential = ctx.tangential && normal.status != SolverStatus::kNoContact;
   if (!tangential) {
     result.state.assign(grid.size(), ElementState::kExterior);
     for (std::size_t k = 0; k < grid.size(); ++k) {

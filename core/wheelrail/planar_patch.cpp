@@ -55,7 +55,7 @@ PatchResult SolvePlanarPatch(const PatchContext& ctx, const PatchExtent& extent)
   const auto t_q = wheel.IntersectLine(p_c3, n3, 0.0);
   const Eigen::Vector3d q = p_c3 + (t_q ? *t_q : 0.0) * n3;
   const double v = ctx.velocity;
-  if (c.effects.tangential) {
+  if (ctx.tangential) {
     const Eigen::Vector3d w = Eigen::Vector3d(-v, 0.0, 0.0) - wheel.MaterialVelocity(q);
     result.cksi = w(0) / v;
     result.ceta = w.dot(t3) / v;

@@ -2,7 +2,6 @@
 #include <cmath>
 #include <memory>
 
-#include "core/gsl/roots.h"
 #include "core/wheelrail/contact_search.h"
 #include "core/wheelrail/geometry.h"
 #include "core/wheelrail/patch.h"
@@ -50,8 +49,9 @@ struct Problem {
   double mirror = 1.0;  // −1 for a left case solved as its mirror image
 };
 
-// Solves the patches at wheelset height z (right-side equivalent).
-WheelRailResult SolveAt(const Problem& pb, double z) {
+// Solves the patches at wheelset height z (right-side equivalent); with tangential = false
+// only the normal problems (for the vertical force iteration).
+WheelRailResult SolveAt(const Problem& pb, double z, bool tangential = true) {
   WheelsetKinematics kin = pb.kin;
   kin.z = z;
   const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
@@ -64,6 +64,7 @@ WheelRailResult SolveAt(const Problem& pb, double z) {
   ctx.velocity = kin.velocity;
   ctx.material = pb.material;
   ctx.options = pb.options;
+  ctx.tangential = tangential && pb.c->effects.tangential;
 
   WheelRailResult result;
   result.z = z;
@@ -162,45 +163,80 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   if (st.z) {
     result = SolveAt(pb, *st.z);
   } else {
-    // Prescribed vertical force FZ(TR) on the rail: find z with Brent's method between the
-    // height of first contact (force 0) and a height that overshoots, found by doubling. The
-    // best solution seen is kept, so the answer needs no extra solve.
+    // Prescribed vertical force FZ(TR) on the rail. The tangential tractions add only a small
+    // part to FZ(TR) (fs·sin δ), so z is found on normal-only solves, by Brent's method between
+    // the height of first contact (force 0) and a height that overshoots (found by doubling),
+    // for the target fz − c, where c = FZ(full) − FZ(normal only) is updated from a full solve
+    // until the full solve meets fz. Each full solve costs a tangential problem; the normal
+    // solves are several times cheaper.
     const double fz = *st.fz;
-    double best_error = 1e300;
-    auto residual = [&](double z) {
+    const double tolerance = options.fz_tolerance * fz;
+    auto normal_force = [&](double z) {
       ++iterations;
-      WheelRailResult r = SolveAt(pb, z);
-      const double f = r.force_T(2) - fz;
-      if (std::fabs(f) < best_error) {
-        best_error = std::fabs(f);
-        result = std::move(r);
-      }
-      return f;
+      return SolveAt(pb, z, false).force_T(2);
     };
-    double lo = first_contact, hi = first_contact + 0.01;
-    double f_lo = -fz;
-    double f_hi = residual(hi);
-    for (int k = 0; k < 40 && f_hi < 0.0; ++k) {
-      lo = hi;
-      f_lo = f_hi;
-      hi = first_contact + 2.0 * (hi - first_contact);
-      f_hi = residual(hi);
+    // Finds z with normal_force(z) = target. For Hertzian contact F ∝ δ^1.5 with δ = z − z_c,
+    // so G(z) = F^(2/3) is close to linear in z and a secant on G converges in a few steps; a
+    // bracket [lo, hi] with F(lo) < target < F(hi) guards every step (bisection when the secant
+    // leaves it), so the iteration cannot diverge even where patches appear or merge.
+    double z_prev = first_contact + 0.01;  // warm start for later passes
+    auto find_z = [&](double target) {
+      double lo = first_contact, g_lo = 0.0, hi = 1e300, g_hi = 0.0;
+      const double g_target = std::cbrt(target * target);
+      double z0 = z_prev, f0 = normal_force(z0);
+      double z1 = 0.0, f1 = 0.0;
+      auto record = [&](double z, double f) {
+        const double g = std::cbrt(std::max(f, 0.0) * std::max(f, 0.0));
+        if (f < target) {
+          if (z > lo) { lo = z; g_lo = g; }
+        } else if (z < hi) {
+          hi = z;
+          g_hi = g;
+        }
+      };
+      record(z0, f0);
+      // Second point: the Hertz scaling from the first one.
+      z1 = f0 > 0.0 ? first_contact + (z0 - first_contact) * g_target /
+                                          std::cbrt(f0 * f0)
+                    : first_contact + 2.0 * (z0 - first_contact);
+      for (int it = 0; it < options.max_fz_iterations; ++it) {
+        if (hi < 1e300 && !(z1 > lo && z1 < hi)) z1 = 0.5 * (lo + hi);
+        if (hi == 1e300 && !(z1 > lo)) z1 = lo + 2.0 * (lo - first_contact) + 1e-3;
+        f1 = normal_force(z1);
+        record(z1, f1);
+        if (std::fabs(f1 - target) <= 0.25 * tolerance) break;
+        if (hi < 1e300 && hi - lo < 1e-13) break;
+        const double g0 = std::cbrt(std::max(f0, 0.0) * std::max(f0, 0.0));
+        const double g1 = std::cbrt(std::max(f1, 0.0) * std::max(f1, 0.0));
+        double z2 = g1 != g0 ? z1 + (g_target - g1) * (z1 - z0) / (g1 - g0) : 0.5 * (lo + hi);
+        if (hi < 1e300 && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
+          z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);  // regula falsi in G
+        }
+        z0 = z1;
+        f0 = f1;
+        z1 = z2;
+      }
+      if (std::fabs(f1 - target) > 0.25 * tolerance && hi == 1e300) {
+        throw InputError(c.source_name + ": state.fz = " + std::to_string(fz) +
+                         " N is not reached: the wheel finds no support on the rail");
+      }
+      z_prev = z1;
+      return z1;
+    };
+    double target = fz;
+    bool met = false;
+    for (int pass = 0; pass < 6 && !met; ++pass) {
+      const double z = find_z(target);
+      if (!c.effects.tangential) {
+        result = SolveAt(pb, z, false);
+      } else {
+        ++iterations;
+        result = SolveAt(pb, z, true);
+        target += fz - result.force_T(2);
+      }
+      met = std::fabs(result.force_T(2) - fz) <= tolerance;
     }
-    if (f_hi < 0.0) {
-      throw InputError(c.source_name + ": state.fz = " + std::to_string(fz) +
-                       " N cannot be reached within 10 m of wheelset travel");
-    }
-    if (best_error > options.fz_tolerance * fz) {
-      // F(z) is convex (Hertz: F ∝ δ^1.5), so the secant stiffness over the bracket is below
-      // the stiffness at the root and this z tolerance meets the force tolerance.
-      const double stiffness = (f_hi - f_lo) / (hi - lo);
-      gsl::RootOptions ro;
-      ro.abs_tolerance = options.fz_tolerance * fz / stiffness;
-      ro.rel_tolerance = 0.0;
-      ro.max_iterations = options.max_fz_iterations;
-      gsl::FindRootBrent(residual, lo, hi, ro);
-    }
-    if (best_error > 10.0 * options.fz_tolerance * fz) {
+    if (!met) {
       result.status = SolverStatus::kNotConverged;
       result.message = "vertical force iteration did not meet state.fz = " + std::to_string(fz);
     }
