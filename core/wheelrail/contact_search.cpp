@@ -41,13 +41,16 @@ bool Locate(const PlacedWheel& wheel, double y, double z_rail, double x_guess, L
 
 ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step) {
   ContactSearch search;
+  // Equal steps of at most `step` that end exactly on the profile's last point, so that a
+  // symmetric profile pair gives a symmetric search.
+  const int n = std::max(1, static_cast<int>(std::ceil(rail.length() / step)));
+  step = rail.length() / n;
   search.step = step;
-  const int n = static_cast<int>(std::floor(rail.length() / step));
   search.samples.resize(n + 1);
   double x_guess = 0.0;
   for (int k = 0; k <= n; ++k) {
     LocusSample& sample = search.samples[k];
-    sample.s = k * step;
+    sample.s = std::min(k * step, rail.length());
     const Eigen::Vector2d p = rail.PositionAt(sample.s);
     sample.y = p(0);
     sample.z = p(1);

@@ -111,6 +111,8 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   tp.mu = mu;
   tp.wx = wx;
   tp.wy = wy;
+  result.wx = wx;
+  result.ws = wy;
   TangentialWorkspace tws;
   TangentialSolution ts;
   const TangentialSummary summary =
@@ -138,6 +140,7 @@ void FillReferenceOutputs(const PatchContext& ctx, const PatchReference& ref,
 
 void ClearFields(PatchResult& result) {
   for (auto* v : {&result.h, &result.pn, &result.px, &result.ps, &result.sx, &result.ss,
+                  &result.wx, &result.ws,
                   &result.curve_y, &result.curve_z, &result.curve_angle}) {
     v->clear();
     v->shrink_to_fit();

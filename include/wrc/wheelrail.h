@@ -49,6 +49,7 @@ struct PatchResult {
   // reference also the reference curve (y, z, angle per grid column, track frame).
   Grid grid;
   std::vector<double> h, pn, px, ps, sx, ss;
+  std::vector<double> wx, ws;  ///< Relative rigid slip per element (tangential cases), -.
   std::vector<ElementState> state;
   std::vector<double> curve_y, curve_z, curve_angle;
 };

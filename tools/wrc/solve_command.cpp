@@ -147,7 +147,7 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
     const std::string stem = "patch" + std::to_string(n + 1);
     std::ofstream out(dir / (stem + "_fields.csv"));
     if (!out) throw InputError("--out " + dir.string() + ": cannot write " + stem + "_fields.csv");
-    out << "i,j,x,s,h,pn,px,ps,sx,ss,state\n";
+    out << "i,j,x,s,h,pn,px,ps,sx,ss,wx,ws,state\n";
     out.precision(10);
     const Grid& g = p.grid;
     const bool t = !p.px.empty();
@@ -157,6 +157,7 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
         out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ',' << p.h[k] << ',' << p.pn[k]
             << ',' << (t ? p.px[k] : 0.0) << ',' << (t ? p.ps[k] : 0.0) << ','
             << (t ? p.sx[k] : 0.0) << ',' << (t ? p.ss[k] : 0.0) << ','
+            << (t ? p.wx[k] : 0.0) << ',' << (t ? p.ws[k] : 0.0) << ','
             << static_cast<int>(p.state[k]) << '\n';
       }
     }
