@@ -85,6 +85,35 @@ WheelRailResult SolveAt(const Problem& pb, double z, bool tangential = true) {
   return result;
 }
 
+// The location x_av of paper Eq. 25–27 where the total force acts with the smallest moment,
+// shifted along F onto the rail surface (which changes neither force nor moment). With M the
+// moment of the tractions about the rail origin (M = Σ r × F), the force's line of action
+// passes through x_av = F × M⊥/(F·F) = F × M/(F·F); the paper writes M × F for the couple that
+// compensates the shift, which has the opposite sign.
+void LocateResultant(const Problem& pb, WheelRailResult& r) {
+  const Eigen::Vector3d& f = r.force_T;
+  if (r.patches.empty() || !(f.squaredNorm() > 0.0)) return;
+  const Eigen::Vector3d origin(0.0, pb.rail->origin()(0), pb.rail->origin()(1));
+  const Eigen::Vector3d x_av = origin + f.cross(r.moment_T) / f.squaredNorm();
+  const Eigen::Vector2d d = f.tail<2>();
+  if (!(d.norm() > 1e-9 * f.norm())) return;
+  // Start from the reference of the patch that carries most of the load.
+  const PatchResult* main = &r.patches[0];
+  for (const PatchResult& p : r.patches) {
+    if (p.fn > main->fn) main = &p;
+  }
+  const Eigen::Vector2d on_rail = main->reference_T.tail<2>();
+  const auto s = pb.rail->IntersectLine(x_av.tail<2>(), d.normalized(),
+                                        pb.rail->spline().ZAtY(pb.rail->ToRail(on_rail)(0)).s);
+  if (!s) return;
+  const Eigen::Vector2d p = pb.rail->PositionAt(*s);
+  const double lambda = (p - x_av.tail<2>()).dot(d) / d.squaredNorm();
+  r.force_location_T = x_av + lambda * f;
+  r.has_force_location = true;
+  r.contact_y = pb.rail->ToRail(p)(0);
+  r.contact_angle = pb.rail->InclinationAt(*s);
+}
+
 // Undoes the mirroring of a left case: y components of forces and positions change sign, and
 // so do the x and z components of moments (pseudo-vectors).
 void MirrorResult(WheelRailResult& r) {
@@ -96,6 +125,10 @@ void MirrorResult(WheelRailResult& r) {
   mirror_force(r.force_T);
   mirror_force(r.force_W);
   mirror_moment(r.moment_T);
+  r.force_location_T(1) = -r.force_location_T(1);
+  r.rail_origin_T(1) = -r.rail_origin_T(1);
+  r.contact_y = -r.contact_y;
+  r.contact_angle = -r.contact_angle;
   for (PatchResult& p : r.patches) {
     mirror_force(p.force_T);
     mirror_moment(p.moment_T);
@@ -179,7 +212,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     // so G(z) = F^(2/3) is close to linear in z and a secant on G converges in a few steps; a
     // bracket [lo, hi] with F(lo) < target < F(hi) guards every step (bisection when the secant
     // leaves it), so the iteration cannot diverge even where patches appear or merge.
-    double z_prev = first_contact + 0.01;  // warm start for later passes
+    double z_prev = std::isfinite(options.z_guess) && options.z_guess > first_contact
+                        ? options.z_guess
+                        : first_contact + 0.01;  // warm start
     auto find_z = [&](double target) {
       double lo = first_contact, g_lo = 0.0, hi = 1e300, g_hi = 0.0;
       const double g_target = std::cbrt(target * target);
@@ -241,6 +276,8 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
       result.message = "vertical force iteration did not meet state.fz = " + std::to_string(fz);
     }
   }
+  result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
+  LocateResultant(pb, result);
   result.fz_iterations = iterations;
   result.y = st.y;
   result.roll = st.roll;

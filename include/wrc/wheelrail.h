@@ -5,6 +5,7 @@
 /// and the total forces on the rail (SPEC §3).
 
 #include <Eigen/Dense>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct WheelRailOptions {
   int max_fz_iterations = 100;
   /// Keep the grids and fields of each patch in the result (for `wrc solve --out`).
   bool keep_fields = false;
+  /// With a prescribed fz: a wheelset height to start the iteration from (e.g. the solution of
+  /// a neighbouring point of a sweep); NaN starts from first contact.
+  double z_guess = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One contact patch, in its contact reference frame (x along the track, s lateral along the
@@ -61,9 +65,16 @@ struct WheelRailResult {
   double y = 0.0, z = 0.0, roll = 0.0, yaw = 0.0, omega = 0.0;  ///< Wheelset state used.
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Total force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the rail origin, track frame.
+  Eigen::Vector3d rail_origin_T = Eigen::Vector3d::Zero();  ///< The rail profile's origin.
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   ///< Total force on the rail, wheelset frame.
   std::vector<PatchResult> patches;  ///< Field side first.
   int fz_iterations = 0;
+  /// Where the total force acts with the smallest moment (paper Eq. 25–27), moved along the
+  /// force onto the rail surface; track frame. Valid when `has_force_location`.
+  Eigen::Vector3d force_location_T = Eigen::Vector3d::Zero();
+  bool has_force_location = false;
+  double contact_y = 0.0;      ///< Rail profile y of force_location_T, mm (SPEC §4.2).
+  double contact_angle = 0.0;  ///< Rail inclination there, track frame, rad.
 };
 
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact

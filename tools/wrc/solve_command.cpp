@@ -134,6 +134,13 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
           {"rail_forces_track", forces},
           {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
           {"patches", patches},
+          {"force_location", r.has_force_location
+                                 ? json{{"x_tr", r.force_location_T(0)},
+                                        {"y_tr", r.force_location_T(1)},
+                                        {"z_tr", r.force_location_T(2)},
+                                        {"y_r", r.contact_y},
+                                        {"contact_angle", r.contact_angle}}
+                                 : json(nullptr)},
           {"iterations", {{"fz", r.fz_iterations}}},
           {"timing_s", {{"total", seconds}}}};
 }

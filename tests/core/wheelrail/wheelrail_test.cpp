@@ -85,5 +85,27 @@ TEST(WheelRail, FrictionlessSceneSkipsTangentialSolve) {
   }
 }
 
+// The resultant's location (paper Eq. 25–27) lies on the rail surface, and about it the
+// moment of the tractions is parallel to the force (its perpendicular part vanishes).
+TEST(WheelRail, ForceLocationLeavesOnlyAParallelMoment) {
+  const WheelRailResult r = SolveWheelRail(Manchester(6.0, ReferenceSurface::kCurved));
+  ASSERT_TRUE(r.has_force_location);
+  const Eigen::Vector3d& f = r.force_T;
+  const Eigen::Vector3d m_loc = r.moment_T - (r.force_location_T - r.rail_origin_T).cross(f);
+  // |M⊥| relative to |M|: round-off of sums over ~1000 elements, 1e-9.
+  EXPECT_LT(m_loc.cross(f).norm() / f.norm(), 1e-9 * r.moment_T.norm());
+  // The location lies between the outer patches.
+  EXPECT_GT(r.force_location_T(1), r.patches.back().reference_T(1));
+  EXPECT_LT(r.force_location_T(1), r.patches.front().reference_T(1));
+  // For three vertical-ish patch forces the lateral location is their fn-weighted mean to
+  // within the lever of the small lateral forces (z differences of a few mm × fy/fz ≈ 0.1 mm).
+  double sum = 0.0, weighted = 0.0;
+  for (const PatchResult& p : r.patches) {
+    sum += p.force_T(2);
+    weighted += p.force_T(2) * p.reference_T(1);
+  }
+  EXPECT_NEAR(r.force_location_T(1), weighted / sum, 0.5);
+}
+
 }  // namespace
 }  // namespace wrc
