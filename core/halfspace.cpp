@@ -17,8 +17,11 @@ Grid HalfspaceGrid(const Case& c) {
       st.fn ? hertz.ForForce(*st.fn) : hertz.ForApproach(std::max(*st.approach, 0.0));
   // 25 % margin: the half-space solution stays inside the Hertz ellipse for these smooth
   // quadratic gaps, and tangential loading does not change the contact area when K = 0.
-  const double ax = std::max(1.25 * hz.semi_axis_x, 2.0 * gs.dx);
-  const double ay = std::max(1.25 * hz.semi_axis_y, 2.0 * gs.dy);
+  // A whole number of cells centred on the origin, so that symmetric problems stay symmetric.
+  const double ax =
+      0.5 * gs.dx * std::ceil(2.0 * std::max(1.25 * hz.semi_axis_x, 2.0 * gs.dx) / gs.dx);
+  const double ay =
+      0.5 * gs.dy * std::ceil(2.0 * std::max(1.25 * hz.semi_axis_y, 2.0 * gs.dy) / gs.dy);
   const Interval x = gs.x.value_or(Interval{-ax, ax});
   const Interval y = gs.y.value_or(Interval{-ay, ay});
   return Grid::Covering(x.min, x.max, y.min, y.max, gs.dx, gs.dy);

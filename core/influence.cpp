@@ -39,8 +39,7 @@ double AntiXOverR2(double X, double Y) {
 // Integral of kernel(X − ξ, Y − η) over ξ ∈ [−hx, hx], η ∈ [−hy, hy].
 template <typename Anti>
 double RectangleIntegral(Anti anti, double X, double Y, double hx, double hy) {
-  return anti(X + hx, Y + hy) - anti(X - hx, Y + hy) - anti(X + hx, Y - hy) +
-         anti(X - hx, Y - hy);
+  return anti(X + hx, Y + hy) - anti(X - hx, Y + hy) - anti(X + hx, Y - hy) + anti(X - hx, Y - hy);
 }
 
 }  // namespace

@@ -49,8 +49,8 @@ void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double
 }  // namespace
 
 NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
-                          const NormalLoad& load, const NormalOptions& options,
-                          NormalWorkspace& ws, NormalSolution& sol) {
+                          const NormalLoad& load, const NormalOptions& options, NormalWorkspace& ws,
+                          NormalSolution& sol) {
   Validate(op, h, load);
   const std::size_t n = h.size();
   const double area = op.grid().element_area();
@@ -75,9 +75,9 @@ NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<doub
 
   // Initial guess: the warm start, or a pressure that is uniform (force control) or
   // proportional to the interpenetration through the element's own stiffness.
-  const bool warm = options.warm_start && sol.pressure.size() == n &&
-                    std::any_of(sol.pressure.begin(), sol.pressure.end(),
-                                [](double p) { return p > 0.0; });
+  const bool warm =
+      options.warm_start && sol.pressure.size() == n &&
+      std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
   if (!warm) {
     sol.pressure.assign(n, 0.0);
     if (force_control) {

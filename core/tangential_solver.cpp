@@ -29,8 +29,8 @@ void Validate(const SteadyRollingOperator& op, const TangentialProblem& pb) {
   }
   for (double m : pb.mu) {
     if (!std::isfinite(m) || m < 0.0) {
-      throw std::invalid_argument("tangential problem: friction coefficient " +
-                                  std::to_string(m) + " is negative or not finite");
+      throw std::invalid_argument("tangential problem: friction coefficient " + std::to_string(m) +
+                                  " is negative or not finite");
     }
   }
 }
@@ -137,8 +137,8 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     }
     sol.fx = sol.fy = sol.mz = 0.0;
     sol.n_adhesion = 0;
-    sol.n_slip = static_cast<int>(
-        std::count(sol.state.begin(), sol.state.end(), ElementState::kSlip));
+    sol.n_slip =
+        static_cast<int>(std::count(sol.state.begin(), sol.state.end(), ElementState::kSlip));
     return summary;
   }
 

@@ -122,8 +122,7 @@ void FftInfluenceOperator::ApplyTangential(const double* px, const double* py, d
   Backward(su, uy, ws);
 }
 
-DenseInfluenceOperator::DenseInfluenceOperator(const Grid& grid,
-                                               const CombinedElasticity& material)
+DenseInfluenceOperator::DenseInfluenceOperator(const Grid& grid, const CombinedElasticity& material)
     : grid_(grid), material_(material) {
   grid_.Validate();
 }

@@ -13,13 +13,13 @@ namespace wrc::wr {
 /// wheelset down by dz lowers every vertical gap by exactly dz, so one search serves every z
 /// of an fz iteration (gap_at(dz) = gap − dz).
 struct LocusSample {
-  double s = 0.0;          ///< Rail arc length, mm.
+  double s = 0.0;           ///< Rail arc length, mm.
   double y = 0.0, z = 0.0;  ///< Rail surface point, track frame.
-  double alpha = 0.0;      ///< Rail inclination, rad.
-  double x = 0.0;          ///< Contact locus: x of the smallest gap, mm.
-  double gap = 0.0;        ///< Smallest vertical gap at this lateral position, mm.
-  double curvature = 0.0;  ///< d²gap/dx² at the locus, 1/mm (> 0).
-  bool valid = false;      ///< The wheel lies above this rail point.
+  double alpha = 0.0;       ///< Rail inclination, rad.
+  double x = 0.0;           ///< Contact locus: x of the smallest gap, mm.
+  double gap = 0.0;         ///< Smallest vertical gap at this lateral position, mm.
+  double curvature = 0.0;   ///< d²gap/dx² at the locus, 1/mm (> 0).
+  bool valid = false;       ///< The wheel lies above this rail point.
 };
 
 struct ContactSearch {

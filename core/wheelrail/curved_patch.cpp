@@ -182,10 +182,10 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
   result.fs = force_bar(1);
   result.fn = force_bar(2);
   result.mn = moment_bar(2);
-  result.force_T = force_bar(0) * Eigen::Vector3d::UnitX() + force_bar(1) * t_bar3 +
-                   force_bar(2) * n_bar3;
-  result.moment_T = moment_bar(0) * Eigen::Vector3d::UnitX() + moment_bar(1) * t_bar3 +
-                    moment_bar(2) * n_bar3;
+  result.force_T =
+      force_bar(0) * Eigen::Vector3d::UnitX() + force_bar(1) * t_bar3 + force_bar(2) * n_bar3;
+  result.moment_T =
+      moment_bar(0) * Eigen::Vector3d::UnitX() + moment_bar(1) * t_bar3 + moment_bar(2) * n_bar3;
   FillReferenceOutputs(ctx, ref, p_c3, result);
   if (ctx.options->keep_fields) {
     for (int j = 0; j < ny; ++j) {

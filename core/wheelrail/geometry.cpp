@@ -85,8 +85,8 @@ Eigen::Vector2d PlacedRail::ToRail(const Eigen::Vector2d& p_T) const {
   return R_TR_.transpose() * (p_T - p_TRo_T_);
 }
 
-std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0,
-                                                const Eigen::Vector2d& n, double s_guess) const {
+std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0, const Eigen::Vector2d& n,
+                                                double s_guess) const {
   // f(s) = (P(s) − p0) × n = 0, Newton with f'(s) = t(s) × n.
   double s = std::clamp(s_guess, 0.0, spline_.length());
   for (int it = 0; it < 50; ++it) {
@@ -114,7 +114,8 @@ PlacedWheel::PlacedWheel(std::shared_ptr<const ProfileSpline> spline, const Whee
   R_TW_ = roll * yaw;
   p_TWo_T_ = {0.0, state.y, state.z - nominal_radius_};
   v_TWo_T_ = {0.0, state.vy, 0.0};
-  w_TW_T_ = state.vroll * Eigen::Vector3d::UnitX() + state.vyaw * (roll * Eigen::Vector3d::UnitZ()) +
+  w_TW_T_ = state.vroll * Eigen::Vector3d::UnitX() +
+            state.vyaw * (roll * Eigen::Vector3d::UnitZ()) +
             state.omega * (R_TW_ * Eigen::Vector3d::UnitY());
 }
 

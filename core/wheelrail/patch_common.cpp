@@ -54,9 +54,8 @@ PatchReference FindReference(const PatchContext& ctx, const PatchExtent& extent)
       if (std::fabs(step) < 1e-12) break;
     }
   }
-  ref.angle = m.angle == ReferenceAngle::kWeighted && sum_w > 0.0
-                  ? sum_a / sum_w
-                  : ctx.rail->InclinationAt(ref.s);
+  ref.angle = m.angle == ReferenceAngle::kWeighted && sum_w > 0.0 ? sum_a / sum_w
+                                                                  : ctx.rail->InclinationAt(ref.s);
   return ref;
 }
 
@@ -115,8 +114,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   result.ws = wy;
   TangentialWorkspace tws;
   TangentialSolution ts;
-  const TangentialSummary summary =
-      SolveTangential(rolling, tp, ctx.options->tangential, tws, ts);
+  const TangentialSummary summary = SolveTangential(rolling, tp, ctx.options->tangential, tws, ts);
   result.tangential_iterations = summary.iterations;
   if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
   result.px = std::move(ts.px);
@@ -139,9 +137,8 @@ void FillReferenceOutputs(const PatchContext& ctx, const PatchReference& ref,
 }
 
 void ClearFields(PatchResult& result) {
-  for (auto* v : {&result.h, &result.pn, &result.px, &result.ps, &result.sx, &result.ss,
-                  &result.wx, &result.ws,
-                  &result.curve_y, &result.curve_z, &result.curve_angle}) {
+  for (auto* v : {&result.h, &result.pn, &result.px, &result.ps, &result.sx, &result.ss, &result.wx,
+                  &result.ws, &result.curve_y, &result.curve_z, &result.curve_angle}) {
     v->clear();
     v->shrink_to_fit();
   }

@@ -196,80 +196,84 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   if (st.z) {
     result = SolveAt(pb, *st.z);
   } else {
-    // Prescribed vertical force FZ(TR) on the rail. The tangential tractions add only a small
-    // part to FZ(TR) (fs·sin δ), so z is found on normal-only solves, by Brent's method between
-    // the height of first contact (force 0) and a height that overshoots (found by doubling),
-    // for the target fz − c, where c = FZ(full) − FZ(normal only) is updated from a full solve
-    // until the full solve meets fz. Each full solve costs a tangential problem; the normal
-    // solves are several times cheaper.
+    // Prescribed vertical force FZ(TR) on the rail. First z is found on normal-only solves (the
+    // tangential tractions add only a small part, fs·sin δ, to FZ(TR)); then full solves
+    // correct for that part with Newton steps on the stiffness dF/dz known from the normal
+    // iteration, until a full solve meets fz.
     const double fz = *st.fz;
     const double tolerance = options.fz_tolerance * fz;
     auto normal_force = [&](double z) {
       ++iterations;
       return SolveAt(pb, z, false).force_T(2);
     };
-    // Finds z with normal_force(z) = target. For Hertzian contact F ∝ δ^1.5 with δ = z − z_c,
-    // so G(z) = F^(2/3) is close to linear in z and a secant on G converges in a few steps; a
-    // bracket [lo, hi] with F(lo) < target < F(hi) guards every step (bisection when the secant
-    // leaves it), so the iteration cannot diverge even where patches appear or merge.
-    double z_prev = std::isfinite(options.z_guess) && options.z_guess > first_contact
-                        ? options.z_guess
-                        : first_contact + 0.01;  // warm start
-    auto find_z = [&](double target) {
-      double lo = first_contact, g_lo = 0.0, hi = 1e300, g_hi = 0.0;
-      const double g_target = std::cbrt(target * target);
-      double z0 = z_prev, f0 = normal_force(z0);
-      double z1 = 0.0, f1 = 0.0;
-      auto record = [&](double z, double f) {
-        const double g = std::cbrt(std::max(f, 0.0) * std::max(f, 0.0));
-        if (f < target) {
-          if (z > lo) { lo = z; g_lo = g; }
-        } else if (z < hi) {
-          hi = z;
-          g_hi = g;
+    // Secant on G(z) = F(z)^(2/3): for Hertzian contact F ∝ δ^1.5 with δ = z − z_c, so G is
+    // close to linear in z and the secant converges in a few steps. A bracket [lo, hi] with
+    // F(lo) < fz < F(hi) guards every step (regula falsi or bisection when the secant leaves
+    // it), so the iteration cannot diverge where patches appear or merge.
+    auto g_of = [](double f) { return std::cbrt(std::max(f, 0.0) * std::max(f, 0.0)); };
+    const double g_target = g_of(fz);
+    double lo = first_contact, g_lo = 0.0, hi = 1e300, g_hi = 0.0;
+    double z0 = std::isfinite(options.z_guess) && options.z_guess > first_contact
+                    ? options.z_guess
+                    : first_contact + 0.01;
+    double f0 = normal_force(z0);
+    double z1 = z0, f1 = f0;
+    auto record = [&](double z, double f) {
+      if (f < fz) {
+        if (z > lo) {
+          lo = z;
+          g_lo = g_of(f);
         }
-      };
-      record(z0, f0);
-      // Second point: the Hertz scaling from the first one.
-      z1 = f0 > 0.0 ? first_contact + (z0 - first_contact) * g_target /
-                                          std::cbrt(f0 * f0)
+      } else if (z < hi) {
+        hi = z;
+        g_hi = g_of(f);
+      }
+    };
+    record(z0, f0);
+    double stiffness = 0.0;  // dF/dz near the solution
+    if (std::fabs(f0 - fz) > 0.25 * tolerance) {
+      // Second point from the Hertz scaling of the first.
+      z1 = f0 > 0.0 ? first_contact + (z0 - first_contact) * g_target / g_of(f0)
                     : first_contact + 2.0 * (z0 - first_contact);
       for (int it = 0; it < options.max_fz_iterations; ++it) {
         if (hi < 1e300 && !(z1 > lo && z1 < hi)) z1 = 0.5 * (lo + hi);
         if (hi == 1e300 && !(z1 > lo)) z1 = lo + 2.0 * (lo - first_contact) + 1e-3;
         f1 = normal_force(z1);
         record(z1, f1);
-        if (std::fabs(f1 - target) <= 0.25 * tolerance) break;
+        if (z1 != z0) stiffness = (f1 - f0) / (z1 - z0);
+        if (std::fabs(f1 - fz) <= 0.25 * tolerance) break;
         if (hi < 1e300 && hi - lo < 1e-13) break;
-        const double g0 = std::cbrt(std::max(f0, 0.0) * std::max(f0, 0.0));
-        const double g1 = std::cbrt(std::max(f1, 0.0) * std::max(f1, 0.0));
-        double z2 = g1 != g0 ? z1 + (g_target - g1) * (z1 - z0) / (g1 - g0) : 0.5 * (lo + hi);
+        const double ga = g_of(f0), gb = g_of(f1);
+        double z2 = gb != ga ? z1 + (g_target - gb) * (z1 - z0) / (gb - ga) : 0.5 * (lo + hi);
         if (hi < 1e300 && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
-          z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);  // regula falsi in G
+          z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);
         }
         z0 = z1;
         f0 = f1;
         z1 = z2;
       }
-      if (std::fabs(f1 - target) > 0.25 * tolerance && hi == 1e300) {
+      if (std::fabs(f1 - fz) > 0.25 * tolerance && hi == 1e300) {
         throw InputError(c.source_name + ": state.fz = " + std::to_string(fz) +
                          " N is not reached: the wheel finds no support on the rail");
       }
-      z_prev = z1;
-      return z1;
-    };
-    double target = fz;
+    }
+    if (!(stiffness > 0.0)) {
+      // Met at the first evaluation: estimate dF/dz from the Hertz law, F ∝ δ^1.5.
+      stiffness = 1.5 * std::max(f1, 1e-9) / std::max(z1 - first_contact, 1e-9);
+    }
+    double z = z1;
     bool met = false;
-    for (int pass = 0; pass < 6 && !met; ++pass) {
-      const double z = find_z(target);
-      if (!c.effects.tangential) {
-        result = SolveAt(pb, z, false);
-      } else {
+    if (!c.effects.tangential) {
+      result = SolveAt(pb, z, false);
+      met = std::fabs(result.force_T(2) - fz) <= tolerance;
+    } else {
+      for (int pass = 0; pass < 8 && !met; ++pass) {
         ++iterations;
         result = SolveAt(pb, z, true);
-        target += fz - result.force_T(2);
+        const double error = result.force_T(2) - fz;
+        met = std::fabs(error) <= tolerance;
+        z -= error / stiffness;
       }
-      met = std::fabs(result.force_T(2) - fz) <= tolerance;
     }
     if (!met) {
       result.status = SolverStatus::kNotConverged;

@@ -35,12 +35,12 @@ struct NormalLoad {
 
 /// Result of a normal solve.
 struct NormalSolution {
-  std::vector<double> pressure;   ///< N/mm² per element, i fastest.
-  std::vector<double> deformed;   ///< Deformed distance e = h − approach + A·p per element, mm.
-  double approach = 0.0;          ///< mm (prescribed or found).
-  double force = 0.0;             ///< Σ p·dA, N.
-  double pmax = 0.0;              ///< N/mm².
-  int n_contact = 0;              ///< Elements with p > 0.
+  std::vector<double> pressure;  ///< N/mm² per element, i fastest.
+  std::vector<double> deformed;  ///< Deformed distance e = h − approach + A·p per element, mm.
+  double approach = 0.0;         ///< mm (prescribed or found).
+  double force = 0.0;            ///< Σ p·dA, N.
+  double pmax = 0.0;             ///< N/mm².
+  int n_contact = 0;             ///< Elements with p > 0.
 };
 
 /// Iterations, residual and status of a solve.

@@ -90,8 +90,7 @@ struct TangentialWorkspace {
 /// to the slip), and the slip of the contact's bounding box is corrected after each update;
 /// once per sweep it is recomputed by FFT to stop round-off drift. Throws
 /// std::invalid_argument for inconsistent sizes or non-finite input.
-TangentialSummary SolveTangential(const SteadyRollingOperator& op,
-                                  const TangentialProblem& problem,
+TangentialSummary SolveTangential(const SteadyRollingOperator& op, const TangentialProblem& problem,
                                   const TangentialOptions& options, TangentialWorkspace& workspace,
                                   TangentialSolution& solution);
 

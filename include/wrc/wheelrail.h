@@ -37,12 +37,12 @@ struct PatchResult {
   double fn = 0.0, fx = 0.0, fs = 0.0, mn = 0.0;  ///< Forces on the rail N, spin moment N·mm.
   double pmax = 0.0;                              ///< N/mm².
   int n_contact = 0, n_slip = 0, n_adhesion = 0, n_pot = 0;
-  double contact_angle = 0.0;                   ///< Reference angle δ, rad.
-  Eigen::Vector3d reference_T = Eigen::Vector3d::Zero();  ///< Contact reference, track frame.
+  double contact_angle = 0.0;                                 ///< Reference angle δ, rad.
+  Eigen::Vector3d reference_T = Eigen::Vector3d::Zero();      ///< Contact reference, track frame.
   Eigen::Vector2d reference_rail = Eigen::Vector2d::Zero();   ///< (y_r, z_r).
   Eigen::Vector3d reference_wheel = Eigen::Vector3d::Zero();  ///< (x_w, y_w, z_w).
   double approach = 0.0;  ///< Largest interpenetration of the undeformed surfaces, mm.
-  double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< Creepages at the reference (planar).
+  double cksi = 0.0, ceta = 0.0, cphi = 0.0;           ///< Creepages at the reference (planar).
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the reference, track frame.
   SolverStatus status = SolverStatus::kConverged;
@@ -66,8 +66,8 @@ struct WheelRailResult {
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Total force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the rail origin, track frame.
   Eigen::Vector3d rail_origin_T = Eigen::Vector3d::Zero();  ///< The rail profile's origin.
-  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   ///< Total force on the rail, wheelset frame.
-  std::vector<PatchResult> patches;  ///< Field side first.
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  ///< Total force on the rail, wheelset frame.
+  std::vector<PatchResult> patches;                   ///< Field side first.
   int fz_iterations = 0;
   /// Where the total force acts with the smallest moment (paper Eq. 25–27), moved along the
   /// force onto the rail surface; track frame. Valid when `has_force_location`.

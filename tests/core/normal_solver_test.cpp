@@ -20,9 +20,9 @@ TEST(FftInfluenceOperator, EqualsDenseOperator) {
   const CombinedElasticity m = CombinedElasticity::FromBodies({82000.0, 0.28}, {70000.0, 0.33});
   for (const Grid g : {Grid{7, 5, 0.3, 0.2, -1.0, -0.5}, Grid{16, 9, 0.1, 0.25, 0.0, 0.0},
                        Grid{1, 6, 0.2, 0.2, 0.0, 0.0}}) {
-    const std::vector<InfluenceComponent> all = {
-        InfluenceComponent::kNN, InfluenceComponent::kXX, InfluenceComponent::kYY,
-        InfluenceComponent::kXY, InfluenceComponent::kXN, InfluenceComponent::kNX};
+    const std::vector<InfluenceComponent> all = {InfluenceComponent::kNN, InfluenceComponent::kXX,
+                                                 InfluenceComponent::kYY, InfluenceComponent::kXY,
+                                                 InfluenceComponent::kXN, InfluenceComponent::kNX};
     FftInfluenceOperator fft(g, m, all);
     DenseInfluenceOperator dense(g, m);
     ConvolutionWorkspace ws = fft.MakeWorkspace();
@@ -38,8 +38,8 @@ TEST(FftInfluenceOperator, EqualsDenseOperator) {
         scale = std::max(scale, std::fabs(b[i]));
         err = std::max(err, std::fabs(a[i] - b[i]));
       }
-      EXPECT_LE(err, 1e-12 * scale) << "component " << static_cast<int>(c) << " grid " << g.nx
-                                    << "x" << g.ny;
+      EXPECT_LE(err, 1e-12 * scale)
+          << "component " << static_cast<int>(c) << " grid " << g.nx << "x" << g.ny;
     }
     // The tangential block equals the separate products.
     std::vector<double> in2(g.size()), ux(g.size()), uy(g.size()), t1(g.size()), t2(g.size());
@@ -76,8 +76,8 @@ NormalSolution SolveCircle(double radius, double fn, int across, NormalSummary* 
   }
   NormalWorkspace ws;
   NormalSolution sol;
-  const NormalLoad load = kind == NormalLoad::Kind::kForce ? NormalLoad::Force(fn)
-                                                          : NormalLoad::Approach(hz.approach);
+  const NormalLoad load =
+      kind == NormalLoad::Kind::kForce ? NormalLoad::Force(fn) : NormalLoad::Approach(hz.approach);
   *summary = SolveNormal(op, h, load, NormalOptions{}, ws, sol);
   return sol;
 }
@@ -115,8 +115,7 @@ TEST(NormalSolver, HertzCircleConvergesUnderRefinement) {
 
 TEST(NormalSolver, PrescribedApproachGivesHertzForce) {
   NormalSummary summary;
-  const NormalSolution sol =
-      SolveCircle(460.0, 10000.0, 40, &summary, NormalLoad::Kind::kApproach);
+  const NormalSolution sol = SolveCircle(460.0, 10000.0, 40, &summary, NormalLoad::Kind::kApproach);
   ASSERT_EQ(summary.status, SolverStatus::kConverged) << summary.iterations;
   // F ∝ δ^{3/2}: a 1 % approach error would be a 1.5 % force error; we ask for 1.5 %.
   EXPECT_NEAR(sol.force, 10000.0, 0.015 * 10000.0);
@@ -135,8 +134,7 @@ TEST(NormalSolver, NoContactWhenApproachIsNegative) {
   std::vector<double> h(g.size(), 0.01);
   NormalWorkspace ws;
   NormalSolution sol;
-  const NormalSummary s =
-      SolveNormal(op, h, NormalLoad::Approach(0.005), NormalOptions{}, ws, sol);
+  const NormalSummary s = SolveNormal(op, h, NormalLoad::Approach(0.005), NormalOptions{}, ws, sol);
   EXPECT_EQ(s.status, SolverStatus::kNoContact);
   EXPECT_EQ(sol.force, 0.0);
   EXPECT_EQ(sol.n_contact, 0);

@@ -15,6 +15,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (app.get_subcommands().empty() && !app.remaining().empty()) {
+      std::cerr << "wrc: unknown subcommand '" << app.remaining().front()
+                << "'; run 'wrc --help' for the list\n";
+      return wrc::cli::kExitBadInput;
+    }
     // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
     const int code = app.exit(e);
     return code == 0 ? 0 : wrc::cli::kExitBadInput;

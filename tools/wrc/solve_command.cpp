@@ -32,8 +32,8 @@ void PrintHuman(const json& j) {
   std::cout << "status " << j["status"].get<std::string>() << "\n";
   if (j.contains("rail_forces_track")) {
     const json& f = j["rail_forces_track"];
-    std::cout << "forces on the rail (track): fx " << f["fx"] << " N, fy " << f["fy"]
-              << " N, fz " << f["fz"] << " N\nwheelset z " << j["wheelset"]["z"] << " mm\n";
+    std::cout << "forces on the rail (track): fx " << f["fx"] << " N, fy " << f["fy"] << " N, fz "
+              << f["fz"] << " N\nwheelset z " << j["wheelset"]["z"] << " mm\n";
   }
   int n = 0;
   for (const json& p : j["patches"]) {
@@ -103,46 +103,47 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
   forces.update(Vec(r.moment_T, "mx", "my", "mz"));
   json patches = json::array();
   for (const PatchResult& p : r.patches) {
-    patches.push_back({{"fn", p.fn},
-                       {"fx", p.fx},
-                       {"fs", p.fs},
-                       {"mn", p.mn},
-                       {"pmax", p.pmax},
-                       {"n_contact", p.n_contact},
-                       {"n_slip", p.n_slip},
-                       {"n_adh", p.n_adhesion},
-                       {"n_pot", p.n_pot},
-                       {"contact_angle", p.contact_angle},
-                       {"x_tr", p.reference_T(0)},
-                       {"y_tr", p.reference_T(1)},
-                       {"z_tr", p.reference_T(2)},
-                       {"y_r", p.reference_rail(0)},
-                       {"z_r", p.reference_rail(1)},
-                       {"x_w", p.reference_wheel(0)},
-                       {"y_w", p.reference_wheel(1)},
-                       {"z_w", p.reference_wheel(2)},
-                       {"approach", p.approach},
-                       {"cksi", p.cksi},
-                       {"ceta", p.ceta},
-                       {"cphi", p.cphi},
-                       {"iterations",
-                        {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
+    patches.push_back(
+        {{"fn", p.fn},
+         {"fx", p.fx},
+         {"fs", p.fs},
+         {"mn", p.mn},
+         {"pmax", p.pmax},
+         {"n_contact", p.n_contact},
+         {"n_slip", p.n_slip},
+         {"n_adh", p.n_adhesion},
+         {"n_pot", p.n_pot},
+         {"contact_angle", p.contact_angle},
+         {"x_tr", p.reference_T(0)},
+         {"y_tr", p.reference_T(1)},
+         {"z_tr", p.reference_T(2)},
+         {"y_r", p.reference_rail(0)},
+         {"z_r", p.reference_rail(1)},
+         {"x_w", p.reference_wheel(0)},
+         {"y_w", p.reference_wheel(1)},
+         {"z_w", p.reference_wheel(2)},
+         {"approach", p.approach},
+         {"cksi", p.cksi},
+         {"ceta", p.ceta},
+         {"cphi", p.cphi},
+         {"iterations",
+          {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
   }
-  return {{"status", ToString(r.status)},
-          {"message", r.message},
-          {"wheelset", {{"y", r.y}, {"z", r.z}, {"roll", r.roll}, {"yaw", r.yaw}, {"omega", r.omega}}},
-          {"rail_forces_track", forces},
-          {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
-          {"patches", patches},
-          {"force_location", r.has_force_location
-                                 ? json{{"x_tr", r.force_location_T(0)},
-                                        {"y_tr", r.force_location_T(1)},
-                                        {"z_tr", r.force_location_T(2)},
-                                        {"y_r", r.contact_y},
-                                        {"contact_angle", r.contact_angle}}
-                                 : json(nullptr)},
-          {"iterations", {{"fz", r.fz_iterations}}},
-          {"timing_s", {{"total", seconds}}}};
+  return {
+      {"status", ToString(r.status)},
+      {"message", r.message},
+      {"wheelset", {{"y", r.y}, {"z", r.z}, {"roll", r.roll}, {"yaw", r.yaw}, {"omega", r.omega}}},
+      {"rail_forces_track", forces},
+      {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
+      {"patches", patches},
+      {"force_location", r.has_force_location ? json{{"x_tr", r.force_location_T(0)},
+                                                     {"y_tr", r.force_location_T(1)},
+                                                     {"z_tr", r.force_location_T(2)},
+                                                     {"y_r", r.contact_y},
+                                                     {"contact_angle", r.contact_angle}}
+                                              : json(nullptr)},
+      {"iterations", {{"fz", r.fz_iterations}}},
+      {"timing_s", {{"total", seconds}}}};
 }
 
 // Per patch: fields.csv over the patch grid, and for the curved reference its curve.
@@ -163,9 +164,8 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
         const std::size_t k = g.index(i, j);
         out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ',' << p.h[k] << ',' << p.pn[k]
             << ',' << (t ? p.px[k] : 0.0) << ',' << (t ? p.ps[k] : 0.0) << ','
-            << (t ? p.sx[k] : 0.0) << ',' << (t ? p.ss[k] : 0.0) << ','
-            << (t ? p.wx[k] : 0.0) << ',' << (t ? p.ws[k] : 0.0) << ','
-            << static_cast<int>(p.state[k]) << '\n';
+            << (t ? p.sx[k] : 0.0) << ',' << (t ? p.ss[k] : 0.0) << ',' << (t ? p.wx[k] : 0.0)
+            << ',' << (t ? p.ws[k] : 0.0) << ',' << static_cast<int>(p.state[k]) << '\n';
       }
     }
     if (!p.curve_y.empty()) {
@@ -173,8 +173,8 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
       curve << "j,s,y_tr,z_tr,angle\n";
       curve.precision(10);
       for (std::size_t j = 0; j < p.curve_y.size(); ++j) {
-        curve << j << ',' << g.y(static_cast<int>(j)) << ',' << p.curve_y[j] << ','
-              << p.curve_z[j] << ',' << p.curve_angle[j] << '\n';
+        curve << j << ',' << g.y(static_cast<int>(j)) << ',' << p.curve_y[j] << ',' << p.curve_z[j]
+              << ',' << p.curve_angle[j] << '\n';
       }
     }
   }

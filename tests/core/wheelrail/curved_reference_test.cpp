@@ -29,18 +29,20 @@ void WriteProfile(const fs::path& path, double y0, double y1, double step,
   }
 }
 
-std::string SingleWheelCase(const std::string& rail, const std::string& wheel, double z,
-                            double dx, double ds, bool tangential, bool midplane, double radius) {
+std::string SingleWheelCase(const std::string& rail, const std::string& wheel, double z, double dx,
+                            double ds, bool tangential, bool midplane, double radius) {
   std::ostringstream t;
   t.precision(17);
-  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \"" << rail << "\"\n[wheel]\nprofile = \""
-    << wheel << "\"\n[track]\ngauge_height = -1.0\nrail_y = 0.0\nrail_z = 0.0\ncant = 0.0\n"
+  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \"" << rail
+    << "\"\n[wheel]\nprofile = \"" << wheel
+    << "\"\n[track]\ngauge_height = -1.0\nrail_y = 0.0\nrail_z = 0.0\ncant = 0.0\n"
     << "[wheelset]\nflange_back_distance = 0.0\nflange_back_position = 0.0\nnominal_radius = "
     << radius << "\n[friction]\nmu = 0.3\n[grid]\ndx = " << dx << "\nds = " << ds
     << "\n[method]\nreference = \"curved\"\n[effects]\ntangential = "
-    << (tangential ? "true" : "false") << "\nmidplane_correction = " << (midplane ? "true" : "false")
-    << "\n[state]\ny = 0.0\nz = " << z << "\nroll = 0.0\nyaw = 0.0\nvelocity = 1000.0\nomega = "
-    << -1000.0 / radius << "\n";
+    << (tangential ? "true" : "false")
+    << "\nmidplane_correction = " << (midplane ? "true" : "false")
+    << "\n[state]\ny = 0.0\nz = " << z
+    << "\nroll = 0.0\nyaw = 0.0\nvelocity = 1000.0\nomega = " << -1000.0 / radius << "\n";
   return t.str();
 }
 
@@ -57,9 +59,9 @@ TEST(CurvedReference, BallInGrooveMatchesHandCalculation) {
                [](double y) { return -10.03 + std::sqrt(10.01 * 10.01 - y * y); });
   WriteProfile(dir / "ball.csv", -4.5, 4.5, 0.05,
                [](double y) { return -9.97 + std::sqrt(9.99 * 9.99 - y * y); });
-  const Case c = ParseCase(SingleWheelCase("groove.csv", "ball.csv", 0.0, 0.5, 0.2, false, true,
-                                           500.0),
-                           dir, "ball_in_groove.toml");
+  const Case c =
+      ParseCase(SingleWheelCase("groove.csv", "ball.csv", 0.0, 0.5, 0.2, false, true, 500.0), dir,
+                "ball_in_groove.toml");
   WheelRailOptions options;
   options.keep_fields = true;
   const WheelRailResult r = SolveWheelRail(c, options);
@@ -102,9 +104,9 @@ TEST(CurvedReference, MidplaneCorrectionRemovesArtificialSlip) {
   WriteProfile(dir / "cylinder.csv", -15.0, 15.0, 0.5, [](double) { return 0.0; });
   const double radius = 460.0;
   for (bool midplane : {false, true}) {
-    const Case c = ParseCase(SingleWheelCase("plane.csv", "cylinder.csv", 0.01, 0.25, 0.5, true,
-                                             midplane, radius),
-                             dir, "midplane.toml");
+    const Case c = ParseCase(
+        SingleWheelCase("plane.csv", "cylinder.csv", 0.01, 0.25, 0.5, true, midplane, radius), dir,
+        "midplane.toml");
     WheelRailOptions options;
     options.keep_fields = true;
     const WheelRailResult r = SolveWheelRail(c, options);

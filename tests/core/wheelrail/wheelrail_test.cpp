@@ -78,7 +78,9 @@ TEST(WheelRail, FrictionlessSceneSkipsTangentialSolve) {
     ASSERT_FALSE(r.patches.empty());
     for (const PatchResult& p : r.patches) {
       EXPECT_EQ(p.fx, 0.0);
-      if (ref == ReferenceSurface::kPlanar) EXPECT_EQ(p.fs, 0.0);
+      if (ref == ReferenceSurface::kPlanar) {
+        EXPECT_EQ(p.fs, 0.0);
+      }
       EXPECT_EQ(p.tangential_iterations, 0);
     }
     EXPECT_NEAR(r.force_T(2), 10000.0, 1e-6 * 10000.0);
