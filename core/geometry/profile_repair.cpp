@@ -278,6 +278,18 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     throw InputError(source + ": smoothing " + Format("%g", options.smoothing) +
                      " must be a finite number >= 0");
   }
+  // NaN fails every comparison below, so it is refused too.
+  if (!(options.kink_high_rad > 0.0)) {
+    throw InputError(source + ": kink_high_rad " + Format("%g", options.kink_high_rad) +
+                     " must be > 0 (>= pi disables kink detection)");
+  }
+  if (std::isnan(options.kink_low_rad)) {
+    throw InputError(source + ": kink_low_rad is not a number (negative means kink_high_rad/5)");
+  }
+  if (!(options.kink_width >= 0.0) || !std::isfinite(options.kink_width)) {
+    throw InputError(source + ": kink_width " + Format("%g", options.kink_width) +
+                     " mm must be a finite number >= 0");
+  }
   if (input.y.size() != input.z.size() || input.y.size() != input.lines.size()) {
     throw InputError(source + ": y, z and line arrays differ in size");
   }
@@ -352,9 +364,13 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     profile.lines.push_back(p.line);
   }
 
-  // 7. Smoothing.
+  // 7. Kinks, found on the repaired points before smoothing could round them.
+  profile.kinks = profile_detail::FindKinks(profile.y, profile.z, options);
+
+  // 8. Smoothing, part by part so that the kinks stay sharp.
   if (options.smoothing > 0.0) {
-    profile_detail::SmoothPoints(profile.y, profile.z, options.smoothing);
+    profile_detail::SmoothPointsBetweenKinks(profile.y, profile.z, options.smoothing,
+                                             profile.kinks);
     profile.smoothed = true;
   }
   return profile;

@@ -1,6 +1,8 @@
 // Weighted cubic smoothing spline of a profile (CONTACT's ISMOOTH = 1), Reinsch's algorithm.
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <vector>
 
@@ -21,7 +23,8 @@ namespace wrc::profile_detail {
 // and positive definite, so a sparse LDLᵀ solves it in O(n). In the continuum limit the weights
 // turn the sum into ∫(x − f)² ds and a sine of wavelength ℓ is damped by 1/(1 + λ(2π/ℓ)⁴): half
 // at ℓ = L, the meaning CONTACT gives to L_filt.
-void SmoothPoints(std::vector<double>& y, std::vector<double>& z, double wavelength) {
+void SmoothPoints(std::vector<double>& y, std::vector<double>& z, double wavelength, bool pin_first,
+                  bool pin_last) {
   const std::size_t n = y.size();
   if (n < 3 || z.size() != n) throw std::invalid_argument("SmoothPoints: need 3 or more points");
   std::vector<double> h(n - 1);
@@ -35,6 +38,10 @@ void SmoothPoints(std::vector<double>& y, std::vector<double>& z, double wavelen
     const double after = i + 1 < n ? h[i] : 0.0;
     inverse_weight[i] = 2.0 / (before + after);
   }
+  // An infinite weight forces f(s_i) = x_i: g = x − λW⁻¹Qγ leaves the point unchanged, and the
+  // system matrix stays positive definite (R alone is).
+  if (pin_first) inverse_weight.front() = 0.0;
+  if (pin_last) inverse_weight.back() = 0.0;
   constexpr double kTwoPi = 6.28318530717958647692;
   const double lambda = std::pow(wavelength / kTwoPi, 4);
 
@@ -88,6 +95,27 @@ void SmoothPoints(std::vector<double>& y, std::vector<double>& z, double wavelen
       }
     }
     for (std::size_t i = 0; i < n; ++i) x[i] -= lambda * inverse_weight[i] * q_gamma[i];
+  }
+}
+
+void SmoothPointsBetweenKinks(std::vector<double>& y, std::vector<double>& z, double wavelength,
+                              const std::vector<std::size_t>& kinks) {
+  if (kinks.empty()) {
+    SmoothPoints(y, z, wavelength);
+    return;
+  }
+  std::vector<std::size_t> bounds{0};
+  bounds.insert(bounds.end(), kinks.begin(), kinks.end());
+  bounds.push_back(y.size() - 1);
+  for (std::size_t part = 0; part + 1 < bounds.size(); ++part) {
+    const auto first = static_cast<std::ptrdiff_t>(bounds[part]);
+    const auto last = static_cast<std::ptrdiff_t>(bounds[part + 1]);
+    if (last - first < 2) continue;  // Two points: a straight piece, nothing to smooth.
+    std::vector<double> part_y(y.begin() + first, y.begin() + last + 1);
+    std::vector<double> part_z(z.begin() + first, z.begin() + last + 1);
+    SmoothPoints(part_y, part_z, wavelength, part > 0, part + 2 < bounds.size());
+    std::copy(part_y.begin(), part_y.end(), y.begin() + first);
+    std::copy(part_z.begin(), part_z.end(), z.begin() + first);
   }
 }
 

@@ -1,4 +1,5 @@
-// Arc-length parametrised spline of a profile: y(s), z(s) as GSL natural cubic splines.
+// Arc-length parametrised spline of a profile: y(s), z(s) as GSL natural cubic splines, one pair
+// per part between kinks, and a table of the knot intervals by y for SAtY / ZAtY.
 
 #include <algorithm>
 #include <array>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/geometry/profile_internal.h"
 #include "core/gsl/spline.h"
 #include "wrc/errors.h"
 #include "wrc/profile.h"
@@ -105,17 +107,55 @@ double SolveMonotone(const Cubic& p, double target, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
+/// One knot interval's y(s) as a cubic in t = s − s_i, with what SAtY needs precomputed.
+struct YPiece {
+  Cubic y;
+  /// 0, the critical points of y inside (0, h) ascending, h: y is monotone between them.
+  std::array<double, 4> bounds;
+  std::size_t bound_count;
+  double y_min;  ///< Range of y over the interval (end values and extrema).
+  double y_max;
+};
+
+/// A part of the curve between kinks (or the profile ends): knots first..last of the profile.
+struct Part {
+  std::size_t first;
+  std::size_t last;
+  gsl::Spline y;
+  gsl::Spline z;
+};
+
+/// The knot intervals grouped by y: bucket b covers [y0 + b·width, y0 + (b+1)·width) and lists
+/// (ascending) every interval whose y range overlaps it. Bucket() is monotone in y, so an
+/// interval with y_min ≤ y ≤ y_max, listed in the buckets of y_min to y_max, is always in the
+/// bucket of y: the table never loses a candidate.
+struct YTable {
+  double y0 = 0.0;
+  double width = 1.0;
+  std::size_t bucket_count = 1;
+  std::vector<std::size_t> begin;      ///< Bucket b's intervals: entries[begin[b], begin[b+1]).
+  std::vector<std::size_t> intervals;  ///< The lists of all buckets, one after the other.
+
+  std::size_t Bucket(double y) const {
+    const double index = std::floor((y - y0) / width);
+    return static_cast<std::size_t>(std::clamp(index, 0.0, static_cast<double>(bucket_count - 1)));
+  }
+};
+
 }  // namespace
 
 struct ProfileSpline::Impl {
   ProfileKind kind;
   std::string source;
-  std::vector<double> s;
-  gsl::Spline y;
-  gsl::Spline z;
-  std::vector<Cubic> y_pieces;  ///< y on each knot interval, for SAtY.
-  std::vector<double> piece_y_min;
-  std::vector<double> piece_y_max;
+  std::vector<double> s;           ///< Knots: the arc length at each profile point.
+  std::vector<Part> parts;         ///< Ascending in s; a kink is the last knot of one part and
+                                   ///< the first of the next.
+  std::vector<double> part_start;  ///< s at each part's first knot.
+  std::vector<YPiece> pieces;      ///< One per knot interval.
+  double last_y = 0.0;             ///< y of the last point.
+  double y_min = 0.0;
+  double y_max = 0.0;
+  YTable table;
 
   void CheckRange(double& at) const {
     const double length = s.back();
@@ -125,6 +165,42 @@ struct ProfileSpline::Impl {
                               " mm outside the profile [0, " + std::to_string(length) + "]");
     }
     at = std::clamp(at, 0.0, length);
+  }
+
+  /// The part whose spline is evaluated at `at` (in range): the last one starting at or
+  /// before it, so at a kink the part after the kink.
+  const Part& PartAt(double at) const {
+    const auto after = std::upper_bound(part_start.begin(), part_start.end(), at);
+    const auto index =
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - part_start.begin() - 1, 0));
+    return parts[index];
+  }
+
+  /// Adds the roots of y(s) = y on knot interval k to `roots`. Each monotone sub-interval owns
+  /// its left end; the right end of the whole curve is added by FinishRoots.
+  void AddRootsInInterval(std::size_t k, double y, std::vector<double>& roots) const {
+    const YPiece& piece = pieces[k];
+    if (y < piece.y_min || y > piece.y_max) return;
+    for (std::size_t b = 0; b + 1 < piece.bound_count; ++b) {
+      const double f_lo = piece.y.Value(piece.bounds[b]) - y;
+      const double f_hi = piece.y.Value(piece.bounds[b + 1]) - y;
+      if (f_lo == 0.0) {
+        roots.push_back(s[k] + piece.bounds[b]);
+      } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
+        roots.push_back(s[k] + SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
+      }
+    }
+  }
+
+  void FinishRoots(double y, std::vector<double>& roots) const {
+    if (last_y == y) roots.push_back(s.back());
+    std::sort(roots.begin(), roots.end());
+    // A root on a knot or critical point can be found from both sides; 1e-9 mm apart is the
+    // same point (far below any geometric scale, far above the root solver's round-off).
+    roots.erase(std::unique(roots.begin(), roots.end(),
+                            [](double a, double b) { return std::abs(a - b) <= 1e-9; }),
+                roots.end());
+    for (double& root : roots) root = std::clamp(root, 0.0, s.back());
   }
 };
 
@@ -138,11 +214,11 @@ std::vector<double> ChordLengths(const std::vector<double>& y, const std::vector
   return s;
 }
 
-/// Arc lengths from the first knot to every knot of the curve (y(s), z(s)).
-std::vector<double> ArcLengths(const gsl::Spline& y, const gsl::Spline& z) {
+/// Arc lengths of the curve (y(s), z(s)) at every knot, counted from `start` at the first.
+std::vector<double> ArcLengths(const gsl::Spline& y, const gsl::Spline& z, double start) {
   static const GaussLegendre5 rule;
   const std::vector<double>& knots = y.knots();
-  std::vector<double> arc(knots.size(), 0.0);
+  std::vector<double> arc(knots.size(), start);
   for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
     const double mid = 0.5 * (knots[i] + knots[i + 1]);
     const double half = 0.5 * (knots[i + 1] - knots[i]);
@@ -156,6 +232,98 @@ std::vector<double> ArcLengths(const gsl::Spline& y, const gsl::Spline& z) {
   return arc;
 }
 
+/// Where a part ends: at an end of the profile or at a kink.
+struct PartEnds {
+  bool kink_before = false;
+  bool kink_after = false;
+};
+
+/// The spline of one coordinate over a part. Two points make a straight piece (a cubic needs
+/// three knots). The profile's own ends keep GSL's natural condition (a part without kinks is
+/// exactly the spline of the profile without kink detection). At a kink, a natural end would
+/// force zero curvature into the corner of a curved part (3.7 µm of z error on the wall of
+/// groove_r1010.prr, whose last interval spans 1.4 mm of arc); the not-a-knot end takes the
+/// curvature from the data instead.
+gsl::Spline PartSpline(std::vector<double> s, std::vector<double> f, PartEnds ends) {
+  if (f.size() < 3) return gsl::Spline(std::move(s), std::move(f), gsl::SplineType::kLinear);
+  if (!ends.kink_before && !ends.kink_after) {
+    return gsl::Spline(std::move(s), std::move(f), gsl::SplineType::kNaturalCubic);
+  }
+  const auto end = [](bool kink) {
+    return kink ? gsl::CubicEnd::kNotAKnot : gsl::CubicEnd::kNatural;
+  };
+  return gsl::Spline(std::move(s), std::move(f), end(ends.kink_before), end(ends.kink_after));
+}
+
+/// The knots of the part through (y, z) starting at arc length `start`: chord lengths, then
+/// refined until each interval's parameter length equals the spline's arc length over it
+/// (chord length underestimates the arc length of curved parts).
+std::vector<double> PartKnots(const std::vector<double>& y, const std::vector<double>& z,
+                              double start, PartEnds ends) {
+  std::vector<double> s = ChordLengths(y, z);
+  for (double& knot : s) knot += start;
+  for (int pass = 0; pass < kMaxRefinements; ++pass) {
+    const gsl::Spline spline_y = PartSpline(s, y, ends);
+    const gsl::Spline spline_z = PartSpline(s, z, ends);
+    std::vector<double> refined = ArcLengths(spline_y, spline_z, start);
+    double change = 0.0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      change = std::max(change, std::abs(refined[i] - s[i]));
+    }
+    s = std::move(refined);
+    if (change <= kKnotTolerance * s.back()) break;
+  }
+  return s;
+}
+
+/// y on knot interval [s_i, s_i+1] of `part`, with its monotone pieces and range.
+YPiece MakeYPiece(const Part& part, const std::vector<double>& s, const std::vector<double>& y,
+                  std::size_t i) {
+  YPiece piece{};
+  piece.y = HermiteCubic(y[i], y[i + 1], part.y.Derivative(s[i]), part.y.Derivative(s[i + 1]),
+                         s[i + 1] - s[i]);
+  piece.y_min = std::min(y[i], y[i + 1]);
+  piece.y_max = std::max(y[i], y[i + 1]);
+  piece.bound_count = 0;
+  piece.bounds[piece.bound_count++] = 0.0;
+  for (const double t : CriticalPoints(piece.y)) {
+    piece.bounds[piece.bound_count++] = t;
+    piece.y_min = std::min(piece.y_min, piece.y.Value(t));
+    piece.y_max = std::max(piece.y_max, piece.y.Value(t));
+  }
+  piece.bounds[piece.bound_count++] = piece.y.h;
+  return piece;
+}
+
+/// The table of intervals by y over [y_min, y_max], with as many buckets as intervals: about
+/// one interval per bucket where the profile is single-valued in y.
+YTable MakeYTable(const std::vector<YPiece>& pieces, double y_min, double y_max) {
+  YTable table;
+  table.y0 = y_min;
+  if (y_max > y_min) {
+    table.bucket_count = pieces.size();
+    table.width = (y_max - y_min) / static_cast<double>(table.bucket_count);
+  }
+  std::vector<std::size_t> counts(table.bucket_count + 1, 0);
+  for (const YPiece& piece : pieces) {
+    for (std::size_t b = table.Bucket(piece.y_min); b <= table.Bucket(piece.y_max); ++b) {
+      ++counts[b + 1];
+    }
+  }
+  table.begin.resize(table.bucket_count + 1, 0);
+  for (std::size_t b = 0; b < table.bucket_count; ++b) {
+    table.begin[b + 1] = table.begin[b] + counts[b + 1];
+  }
+  table.intervals.resize(table.begin.back());
+  std::vector<std::size_t> filled(table.begin.begin(), table.begin.end() - 1);
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    for (std::size_t b = table.Bucket(pieces[k].y_min); b <= table.Bucket(pieces[k].y_max); ++b) {
+      table.intervals[filled[b]++] = k;
+    }
+  }
+  return table;
+}
+
 }  // namespace
 
 ProfileSpline::ProfileSpline(const Profile& profile) {
@@ -164,50 +332,60 @@ ProfileSpline::ProfileSpline(const Profile& profile) {
     throw InputError(profile.source + ": a profile spline needs at least 4 points, got " +
                      std::to_string(n));
   }
-  std::vector<double> s = ChordLengths(profile.y, profile.z);
+  const std::vector<double> chords = ChordLengths(profile.y, profile.z);
   for (std::size_t i = 1; i < n; ++i) {
-    if (!(s[i] > s[i - 1])) {
+    if (!(chords[i] > chords[i - 1])) {
       const int line = i < profile.lines.size() ? profile.lines[i] : static_cast<int>(i) + 1;
       throw InputError(profile.source + ":" + std::to_string(line) +
                        ": point coincides with the previous one");
     }
   }
-  // Chord length underestimates the arc length of curved parts; refine the knots until each
-  // interval's parameter length equals the spline's arc length over it.
-  for (int pass = 0; pass < kMaxRefinements; ++pass) {
-    const gsl::Spline y(s, profile.y);
-    const gsl::Spline z(s, profile.z);
-    std::vector<double> refined = ArcLengths(y, z);
-    double change = 0.0;
-    for (std::size_t i = 0; i < n; ++i) change = std::max(change, std::abs(refined[i] - s[i]));
-    s = std::move(refined);
-    if (change <= kKnotTolerance * s.back()) break;
-  }
-  impl_ = std::make_unique<Impl>(Impl{profile.kind,
-                                      profile.source,
-                                      s,
-                                      gsl::Spline(s, profile.y),
-                                      gsl::Spline(s, profile.z),
-                                      {},
-                                      {},
-                                      {}});
-
-  Impl& impl = *impl_;
-  impl.y_pieces.reserve(n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const double h = s[i + 1] - s[i];
-    const Cubic piece = HermiteCubic(profile.y[i], profile.y[i + 1], impl.y.Derivative(s[i]),
-                                     impl.y.Derivative(s[i + 1]), h);
-    double lo = std::min(profile.y[i], profile.y[i + 1]);
-    double hi = std::max(profile.y[i], profile.y[i + 1]);
-    for (const double t : CriticalPoints(piece)) {
-      lo = std::min(lo, piece.Value(t));
-      hi = std::max(hi, piece.Value(t));
+  // The parts run from one kink to the next; kinks at the ends or out of order would make
+  // empty parts and are not something RepairProfile produces.
+  std::vector<std::size_t> bounds{0};
+  for (const std::size_t kink : profile.kinks) {
+    if (kink <= bounds.back() || kink + 1 >= n) {
+      throw InputError(profile.source + ": kink index " + std::to_string(kink) +
+                       " is not an interior point in ascending order");
     }
-    impl.y_pieces.push_back(piece);
-    impl.piece_y_min.push_back(lo);
-    impl.piece_y_max.push_back(hi);
+    bounds.push_back(kink);
   }
+  bounds.push_back(n - 1);
+
+  impl_ = std::make_unique<Impl>();
+  Impl& impl = *impl_;
+  impl.kind = profile.kind;
+  impl.source = profile.source;
+  impl.s.assign(n, 0.0);
+  impl.last_y = profile.y.back();
+  for (std::size_t p = 0; p + 1 < bounds.size(); ++p) {
+    const auto first = static_cast<std::ptrdiff_t>(bounds[p]);
+    const auto end = static_cast<std::ptrdiff_t>(bounds[p + 1]) + 1;
+    std::vector<double> y(profile.y.begin() + first, profile.y.begin() + end);
+    std::vector<double> z(profile.z.begin() + first, profile.z.begin() + end);
+    // Each part starts where the previous one ended, so s stays the arc length from point 0.
+    const double start = impl.s[bounds[p]];
+    const PartEnds ends{p > 0, p + 2 < bounds.size()};
+    std::vector<double> knots = PartKnots(y, z, start, ends);
+    std::copy(knots.begin(), knots.end(), impl.s.begin() + first);
+    impl.part_start.push_back(knots.front());
+    impl.parts.push_back(Part{bounds[p], bounds[p + 1], PartSpline(knots, std::move(y), ends),
+                              PartSpline(knots, std::move(z), ends)});
+  }
+
+  impl.pieces.reserve(n - 1);
+  for (const Part& part : impl.parts) {
+    for (std::size_t i = part.first; i < part.last; ++i) {
+      impl.pieces.push_back(MakeYPiece(part, impl.s, profile.y, i));
+    }
+  }
+  impl.y_min = impl.pieces.front().y_min;
+  impl.y_max = impl.pieces.front().y_max;
+  for (const YPiece& piece : impl.pieces) {
+    impl.y_min = std::min(impl.y_min, piece.y_min);
+    impl.y_max = std::max(impl.y_max, piece.y_max);
+  }
+  impl.table = MakeYTable(impl.pieces, impl.y_min, impl.y_max);
 }
 
 ProfileSpline::~ProfileSpline() = default;
@@ -224,22 +402,20 @@ ProfileKind ProfileSpline::kind() const { return impl_->kind; }
 double ProfileSpline::length() const { return impl_->s.back(); }
 const std::vector<double>& ProfileSpline::knots() const { return impl_->s; }
 
-double ProfileSpline::YMin() const {
-  return *std::min_element(impl_->piece_y_min.begin(), impl_->piece_y_min.end());
-}
-double ProfileSpline::YMax() const {
-  return *std::max_element(impl_->piece_y_max.begin(), impl_->piece_y_max.end());
-}
+double ProfileSpline::YMin() const { return impl_->y_min; }
+double ProfileSpline::YMax() const { return impl_->y_max; }
 
 ProfileVector ProfileSpline::PositionAt(double s) const {
   impl_->CheckRange(s);
-  return ProfileVector{impl_->y.Value(s), impl_->z.Value(s)};
+  const Part& part = impl_->PartAt(s);
+  return ProfileVector{part.y.Value(s), part.z.Value(s)};
 }
 
 ProfileVector ProfileSpline::TangentAt(double s) const {
   impl_->CheckRange(s);
-  const double dy = impl_->y.Derivative(s);
-  const double dz = impl_->z.Derivative(s);
+  const Part& part = impl_->PartAt(s);
+  const double dy = part.y.Derivative(s);
+  const double dz = part.z.Derivative(s);
   const double speed = std::hypot(dy, dz);
   return ProfileVector{dy / speed, dz / speed};
 }
@@ -261,10 +437,11 @@ double ProfileSpline::InclinationAt(double s) const {
 
 double ProfileSpline::CurvatureAt(double s) const {
   impl_->CheckRange(s);
-  const double dy = impl_->y.Derivative(s);
-  const double dz = impl_->z.Derivative(s);
-  const double ddy = impl_->y.SecondDerivative(s);
-  const double ddz = impl_->z.SecondDerivative(s);
+  const Part& part = impl_->PartAt(s);
+  const double dy = part.y.Derivative(s);
+  const double dz = part.z.Derivative(s);
+  const double ddy = part.y.SecondDerivative(s);
+  const double ddz = part.z.SecondDerivative(s);
   const double speed = std::hypot(dy, dz);
   // Positive when the curve bends towards the material side (convex body).
   return (dy * ddz - dz * ddy) / (speed * speed * speed);
@@ -273,31 +450,24 @@ double ProfileSpline::CurvatureAt(double s) const {
 std::vector<double> ProfileSpline::SAtY(double y) const {
   const Impl& impl = *impl_;
   std::vector<double> roots;
-  const std::size_t pieces = impl.y_pieces.size();
-  for (std::size_t k = 0; k < pieces; ++k) {
-    if (y < impl.piece_y_min[k] || y > impl.piece_y_max[k]) continue;
-    const Cubic& p = impl.y_pieces[k];
-    std::vector<double> bounds{0.0};
-    for (const double t : CriticalPoints(p)) bounds.push_back(t);
-    bounds.push_back(p.h);
-    for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
-      const double f_lo = p.Value(bounds[b]) - y;
-      const double f_hi = p.Value(bounds[b + 1]) - y;
-      // Each sub-interval owns its left end; the right end of the whole curve is added last.
-      if (f_lo == 0.0) {
-        roots.push_back(impl.s[k] + bounds[b]);
-      } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
-        roots.push_back(impl.s[k] + SolveMonotone(p, y, bounds[b], bounds[b + 1]));
-      }
+  // Outside [YMin, YMax] no interval reaches y (and NaN reaches none).
+  if (y >= impl.y_min && y <= impl.y_max) {
+    const YTable& table = impl.table;
+    const std::size_t bucket = table.Bucket(y);
+    for (std::size_t e = table.begin[bucket]; e < table.begin[bucket + 1]; ++e) {
+      impl.AddRootsInInterval(table.intervals[e], y, roots);
     }
   }
-  if (impl.y.values().back() == y) roots.push_back(impl.s.back());
-  std::sort(roots.begin(), roots.end());
-  // A root on a knot or critical point can be found from both sides; 1e-9 mm apart is the same.
-  roots.erase(std::unique(roots.begin(), roots.end(),
-                          [](double a, double b) { return std::abs(a - b) <= 1e-9; }),
-              roots.end());
-  for (double& root : roots) root = std::clamp(root, 0.0, impl.s.back());
+  impl.FinishRoots(y, roots);
+  return roots;
+}
+
+std::vector<double> profile_detail::SplineAccess::SAtYTryingEveryInterval(
+    const ProfileSpline& spline, double y) {
+  const ProfileSpline::Impl& impl = *spline.impl_;
+  std::vector<double> roots;
+  for (std::size_t k = 0; k < impl.pieces.size(); ++k) impl.AddRootsInInterval(k, y, roots);
+  impl.FinishRoots(y, roots);
   return roots;
 }
 
@@ -315,9 +485,9 @@ ProfileHeight ProfileSpline::ZAtY(double y) const {
   // The surface facing the other body: the top of a rail, the bottom of a wheel.
   const bool rail = impl_->kind == ProfileKind::kRail;
   result.s = roots.front();
-  result.z = impl_->z.Value(roots.front());
+  result.z = impl_->PartAt(roots.front()).z.Value(roots.front());
   for (std::size_t i = 1; i < roots.size(); ++i) {
-    const double z = impl_->z.Value(roots[i]);
+    const double z = impl_->PartAt(roots[i]).z.Value(roots[i]);
     if (rail ? z < result.z : z > result.z) {
       result.z = z;
       result.s = roots[i];

@@ -17,6 +17,16 @@ enum class SplineType {
   kNaturalCubic,  ///< gsl_interp_cspline: C2 cubic with zero second derivative at both ends.
   kAkima,         ///< gsl_interp_akima: C1 cubic, little overshoot near outliers.
   kSteffen,       ///< gsl_interp_steffen: C1 cubic, monotone between monotone data.
+  kCubic,         ///< C2 cubic with an end condition chosen per end (CubicEnd); wrc's own
+                  ///< gsl_interp_type, since GSL offers only natural and periodic ends.
+};
+
+/// End condition of a SplineType::kCubic spline at one end.
+enum class CubicEnd {
+  kNatural,   ///< Zero second derivative there, as gsl_interp_cspline.
+  kNotAKnot,  ///< The two end intervals are one cubic (f''' continuous at the knot next to the
+              ///< end): takes the curvature from the data instead of assuming zero. With only
+              ///< 3 knots and this condition at both ends the spline is the parabola.
 };
 
 /// An interpolating spline f(x) through the knots (x_i, f_i), x strictly increasing.
@@ -25,6 +35,8 @@ class Spline {
   /// Builds the spline. Throws GslError (GSL_EINVAL) if x is not strictly increasing, the sizes
   /// differ or there are fewer knots than the type needs (2 for linear, 3 for cubic, 5 Akima).
   Spline(std::vector<double> x, std::vector<double> f, SplineType type = SplineType::kNaturalCubic);
+  /// A SplineType::kCubic spline (at least 3 knots) with the given end conditions.
+  Spline(std::vector<double> x, std::vector<double> f, CubicEnd first_end, CubicEnd last_end);
   ~Spline();
   Spline(const Spline& other);
   Spline& operator=(const Spline& other);
@@ -44,6 +56,9 @@ class Spline {
   const std::vector<double>& knots() const { return x_; }
   const std::vector<double>& values() const { return f_; }
   SplineType type() const { return type_; }
+  /// End conditions; kNatural for the other cubic types, meaningless for the non-cubic ones.
+  CubicEnd first_end() const { return first_end_; }
+  CubicEnd last_end() const { return last_end_; }
 
  private:
   struct State;  // Holds the gsl_spline; defined in spline.cpp so GSL's headers stay there.
@@ -52,6 +67,8 @@ class Spline {
   std::vector<double> x_;
   std::vector<double> f_;
   SplineType type_;
+  CubicEnd first_end_ = CubicEnd::kNatural;
+  CubicEnd last_end_ = CubicEnd::kNatural;
   std::unique_ptr<State> state_;
 };
 

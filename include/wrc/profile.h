@@ -74,6 +74,19 @@ struct ProfileOptions {
   /// false gives that rule alone; true (default) additionally removes outliers such as the
   /// flange-tip point at line 222 of Car7216_0001r.whl.
   bool remove_spikes = true;
+  /// Kink detection (CONTACT's KINKHIGH, KINKLOW, KINKWID). A kink is a point where the
+  /// polyline of the repaired points turns by more than `kink_high_rad` (the inclination change
+  /// δα_i between segments i−1→i and i→i+1) while no other point within `kink_width` mm of arc
+  /// length (summed chords) on either side turns by more than `kink_low_rad`. Such an isolated
+  /// corner is real geometry (a groove edge, a roller's side face) and is kept sharp: the spline
+  /// and the smoothing are made piecewise between kinks. Clustered large turns are roughness and
+  /// are left to the smoothing. kink_high_rad >= π disables the detection (the result is then
+  /// the plain spline through all points); it must be > 0.
+  double kink_high_rad = 0.52359877559829887;  // π/6
+  /// Neighbour threshold in rad; a negative value (the default) means kink_high_rad / 5.
+  double kink_low_rad = -1.0;
+  /// Half-width in mm of the neighbourhood that must be free of turns above kink_low_rad.
+  double kink_width = 2.0;
 };
 
 /// A profile after reading and repair: points (y_i, z_i) in the profile's own coordinates.
@@ -89,6 +102,10 @@ struct Profile {
   bool mirrored_z = false;  ///< z was mirrored (option, auto-detection or the Simpack file).
   bool reversed = false;    ///< The point order was reversed to run as documented above.
   bool smoothed = false;    ///< The points are the values of the smoothing spline.
+  /// Indices of the kinks (see ProfileOptions::kink_high_rad), ascending, interior points only.
+  /// Kinks are geometry, not repairs, so they add no warning. ProfileSpline keeps the curve's
+  /// direction discontinuous at each of them; clear the list to get one smooth spline.
+  std::vector<std::size_t> kinks;
   /// Everything repaired or ignored, one sentence each, naming the file and its line numbers.
   std::vector<std::string> warnings;
 
@@ -156,7 +173,9 @@ Profile ReadProfile(const std::string& path, ProfileKind kind, const ProfileOpti
 ///     is cut out at the crossing (warning); a longer loop is an error, as in CONTACT;
 ///  6. checks: at least 4 points remain; the length is between 5 and 500 mm as CONTACT requires
 ///     (this catches profiles in m or inches);
-///  7. smoothing (ProfileOptions::smoothing).
+///  7. kinks (ProfileOptions::kink_high_rad), stored in Profile::kinks;
+///  8. smoothing (ProfileOptions::smoothing), separately on each part between kinks, with the
+///     kink points held fixed, so that smoothing never rounds a kink.
 /// Throws InputError naming the file (and lines) when a check fails or an option is invalid.
 Profile RepairProfile(ProfilePoints points, ProfileKind kind, const ProfileOptions& options = {});
 
@@ -188,13 +207,24 @@ struct ProfileHeight {
   bool found() const { return status != Status::kOutside; }
 };
 
+namespace profile_detail {
+struct SplineAccess;  // Test access to the internals (core/geometry/profile_internal.h).
+}  // namespace profile_detail
+
 /// The profile as a parametric curve (y(s), z(s)), with s the arc length in mm from the first
-/// point (0 ≤ s ≤ length()), built from two GSL natural cubic splines through the points.
-/// The knots s_i start as the chord lengths of the polyline and are refined until each knot
-/// interval's spline arc length equals its parameter length (to 1e-10 of the profile length),
-/// so s is the arc length of the curve itself. The curve passes through every point of the
-/// profile (smoothing, if any, was applied to the points by RepairProfile). Thread-safe for
-/// concurrent const use. Copyable.
+/// point (0 ≤ s ≤ length()). The points are split at the profile's kinks (Profile::kinks) into
+/// parts; a kink point ends one part and starts the next. Each part is interpolated by two
+/// cubic splines y(s), z(s) run by GSL (a part of only two points by a straight line), so the
+/// curve is continuous everywhere, smooth (C2) within a part and has a corner at each kink.
+/// At the profile's ends the splines are natural (zero curvature); at a kink they are
+/// not-a-knot, taking the curvature up to the corner from the data. Without kinks this is one
+/// pair of GSL natural cubic splines through all points. The knots s_i start as the
+/// chord lengths of the polyline and are refined, part by part, until each knot interval's
+/// spline arc length equals its parameter length (to 1e-10 of the profile length), so s is the
+/// arc length of the curve itself. The curve passes through every point of the profile
+/// (smoothing, if any, was applied to the points by RepairProfile). At a kink's s, the
+/// derivative-based queries (TangentAt, NormalAt, InclinationAt, CurvatureAt) use the part
+/// after the kink, the one with larger s. Thread-safe for concurrent const use. Copyable.
 class ProfileSpline {
  public:
   /// Throws InputError for fewer than 4 points or coincident successive points.
@@ -216,7 +246,7 @@ class ProfileSpline {
 
   /// Position (y(s), z(s)). s outside [0, length()] throws std::out_of_range.
   ProfileVector PositionAt(double s) const;
-  /// Unit tangent in the direction of increasing s.
+  /// Unit tangent in the direction of increasing s. At a kink: the tangent leaving it.
   ProfileVector TangentAt(double s) const;
   /// Unit normal pointing out of the body's material (towards the other body): upwards (−z) on a
   /// rail's running surface, downwards (+z) on a wheel's tread.
@@ -230,12 +260,14 @@ class ProfileSpline {
   /// circular roller), negative where concave (a groove).
   double CurvatureAt(double s) const;
 
-  /// Every s in [0, length()] with y(s) = y, ascending; empty outside the profile.
+  /// Every s in [0, length()] with y(s) = y, ascending; empty outside the profile. A table of
+  /// the knot intervals by y (built once) limits the search to the intervals that can reach y.
   std::vector<double> SAtY(double y) const;
   /// z at lateral position y (see ProfileHeight for the statuses).
   ProfileHeight ZAtY(double y) const;
 
  private:
+  friend struct profile_detail::SplineAccess;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -17,6 +17,7 @@
 
 #include <unistd.h>
 
+#include "core/geometry/profile_internal.h"
 #include "core/gsl/error.h"
 #include "core/gsl/spline.h"
 #include "wrc/errors.h"
@@ -416,6 +417,24 @@ TEST(ProfileMalformedFile, InvalidOptionsAreRejected) {
   options.zigzag_threshold_deg = 150.0;
   options.smoothing = -1.0;
   EXPECT_THROW(ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail, options), InputError);
+  options.smoothing = 0.0;
+  for (const double high : {0.0, -1.0, std::nan("")}) {
+    ProfileOptions kink = options;
+    kink.kink_high_rad = high;
+    EXPECT_THROW(ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail, kink), InputError);
+  }
+  ProfileOptions kink = options;
+  kink.kink_low_rad = std::nan("");
+  EXPECT_THROW(ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail, kink), InputError);
+  kink = options;
+  kink.kink_width = -1.0;
+  EXPECT_THROW(ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail, kink), InputError);
+  // Kinks must be interior points in ascending order for the spline.
+  Profile bad = ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail);
+  bad.kinks = {0};
+  EXPECT_THROW(ProfileSpline{bad}, InputError);
+  bad.kinks = {20, 10};
+  EXPECT_THROW(ProfileSpline{bad}, InputError);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -742,6 +761,270 @@ TEST(ProfileSplineGeometry, CopiesAreIndependentAndEqual) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Kinks (CONTACT's KINKHIGH / KINKLOW / KINKWID) and the spline built piecewise between them
+
+/// The exact groove of groove_r1010.prr: z = −R + √(R² − y²), R = 10.1, for |y| ≤ R.
+double GrooveR1010(double y) {
+  constexpr double kRadius = 10.1;
+  return -kRadius + std::sqrt(kRadius * kRadius - y * y);
+}
+
+TEST(ProfileKinks, OnlyGroovesAndTheExtendedGaugeFaceOfAvgLow2HaveKinks) {
+  // With the defaults (π/6, π/30, 2 mm): the four grooves have their two plateau corners; the
+  // measured and designed running surfaces have none (their largest turns are shallow or come
+  // in clusters, which is roughness); avg_low2.ban has one at line 577, where the hand-added
+  // line 578 ("add point to extend gauge face") leaves the foot of the gauge face at 123°:
+  // isolated, hence a true kink by CONTACT's rule, far below the running band.
+  for (const FileExpectation& file : AllProfileFiles()) {
+    ProfileOptions options;
+    options.mirror_y = file.mirror_y;
+    const Profile profile = ReadProfile(ProfilePath(file.name), file.kind, options);
+    const bool groove = file.name.rfind("groove_", 0) == 0;
+    const std::size_t expected = groove ? 2 : file.name == "avg_low2.ban" ? 1 : 0;
+    EXPECT_EQ(profile.kinks.size(), expected) << file.name;
+    if (file.name == "avg_low2.ban" && profile.kinks.size() == 1) {
+      EXPECT_EQ(profile.lines[profile.kinks[0]], 577);
+    }
+    // Geometry, not a repair: no warning mentions it.
+    EXPECT_EQ(CountContaining(profile.warnings, "kink"), 0) << file.name;
+  }
+}
+
+TEST(ProfileKinks, ManchesterProfilesHaveNone) {
+  EXPECT_TRUE(ReadProfile(ProfilePath("MBench_S1002_v3.prw"), ProfileKind::kWheel).kinks.empty());
+  EXPECT_TRUE(ReadProfile(ProfilePath("MBench_UIC60_v3.prr"), ProfileKind::kRail).kinks.empty());
+}
+
+TEST(ProfileKinks, GrooveR1010IsSingleValuedAndFollowsTheCircle) {
+  const Profile profile = ReadProfile(ProfilePath("groove_r1010.prr"), ProfileKind::kRail);
+  ASSERT_EQ(profile.kinks.size(), 2u);
+  // The wall meets the plateau at y = ±10.1 (the file's values, exact to the last digit).
+  EXPECT_NEAR(profile.y[profile.kinks[0]], -10.1, 1e-12);
+  EXPECT_NEAR(profile.y[profile.kinks[1]], 10.1, 1e-12);
+  EXPECT_NEAR(profile.z[profile.kinks[0]], -10.1, 1e-12);
+  const ProfileSpline spline(profile);
+
+  // The circle, |y| ≤ 10.0. The file rounds z to 6 decimals (±5e-7 mm). Away from the walls
+  // the samples are 0.1 mm apart and the cubic's own error, ~h⁴κ³/384, is negligible, so the
+  // rounding dominates (seen: 4e-7). Near the walls the points are 0.1 mm apart in y but up to
+  // 1.4 mm in arc length, and z(y) is steep (dz/dy ≈ 7 at y = 9.97): an interpolation error
+  // of δ normal to the curve becomes ~7δ in z. The not-a-knot ends at the kinks keep that to
+  // 1.7e-5 mm (a natural end, forcing zero curvature into the corner, gives 3.7e-3 mm);
+  // 1e-3 mm leaves room for that yet fails any overshoot or loop like the old one.
+  constexpr double kCircleTolerance = 1e-3;
+  for (double y = -10.0; y <= 10.0 + 1e-9; y += 0.0025) {
+    const ProfileHeight height = spline.ZAtY(y);
+    ASSERT_EQ(height.status, ProfileHeight::Status::kInside) << "y = " << y;
+    EXPECT_NEAR(height.z, GrooveR1010(y), kCircleTolerance) << "y = " << y;
+  }
+  // Where the groove used to loop: z = −8.1 at y = 9.9 (a sample point).
+  EXPECT_NEAR(spline.ZAtY(9.9).z, -8.1, 1e-9);
+  EXPECT_NEAR(spline.ZAtY(-9.9).z, -8.1, 1e-9);
+
+  // The plateaus are parts of their own, collinear points: flat to round-off.
+  for (double y = 10.2; y <= 20.1; y += 0.01) {
+    for (const double side : {-1.0, 1.0}) {
+      const ProfileHeight height = spline.ZAtY(side * y);
+      ASSERT_EQ(height.status, ProfileHeight::Status::kInside) << "y = " << side * y;
+      EXPECT_NEAR(height.z, -10.1, 1e-12) << "y = " << side * y;
+    }
+  }
+  EXPECT_NEAR(spline.YMin(), -20.1, 1e-12);
+  EXPECT_NEAR(spline.YMax(), 20.1, 1e-12);
+
+  // A corner: at the kink the tangent is the plateau's (the part after it), just before it the
+  // wall's, nearly vertical.
+  const double kink_s = spline.knots()[profile.kinks[1]];
+  const ProfileVector after = spline.TangentAt(kink_s);
+  const ProfileVector before = spline.TangentAt(kink_s - 1e-6);
+  EXPECT_NEAR(after.y, 1.0, 1e-12);
+  EXPECT_NEAR(after.z, 0.0, 1e-12);
+  EXPECT_LT(std::abs(before.y), 1e-2);
+  EXPECT_LT(before.z, -0.999);  // Upwards, out of the groove.
+  const ProfileVector corner = spline.PositionAt(kink_s);
+  EXPECT_DOUBLE_EQ(corner.y, 10.1);
+  EXPECT_DOUBLE_EQ(corner.z, -10.1);
+}
+
+TEST(ProfileKinks, DisabledGivesTheSplineThroughAllPoints) {
+  ProfileOptions options;
+  options.kink_high_rad = kPi;
+  for (const char* name : {"groove_r1010.prr", "MBench_UIC60_v3.prr"}) {
+    SCOPED_TRACE(name);
+    const Profile profile = ReadProfile(ProfilePath(name), ProfileKind::kRail, options);
+    EXPECT_TRUE(profile.kinks.empty());
+    const ProfileSpline spline(profile);
+    // One pair of GSL natural cubic splines over all knots, as before kink detection: equal to
+    // the last bit.
+    const gsl::Spline y(spline.knots(), profile.y);
+    const gsl::Spline z(spline.knots(), profile.z);
+    for (int i = 0; i <= 2000; ++i) {
+      const double s = spline.length() * i / 2000.0;
+      const ProfileVector p = spline.PositionAt(s);
+      ASSERT_EQ(p.y, y.Value(s)) << "s = " << s;
+      ASSERT_EQ(p.z, z.Value(s)) << "s = " << s;
+      const double speed = std::hypot(y.Derivative(s), z.Derivative(s));
+      ASSERT_EQ(spline.TangentAt(s).y, y.Derivative(s) / speed) << "s = " << s;
+    }
+  }
+  // The groove without kink detection overshoots at the corner (the old spline's loop).
+  const ProfileSpline old(
+      ReadProfile(ProfilePath("groove_r1010.prr"), ProfileKind::kRail, options));
+  EXPECT_EQ(old.ZAtY(9.9).status, ProfileHeight::Status::kMultiValued);
+  // An empty kink list on a profile read with detection gives the same (no smoothing here).
+  Profile cleared = ReadProfile(ProfilePath("groove_r1010.prr"), ProfileKind::kRail);
+  cleared.kinks.clear();
+  const ProfileSpline from_cleared(cleared);
+  EXPECT_EQ(from_cleared.knots(), old.knots());
+  EXPECT_EQ(from_cleared.PositionAt(30.0).z, old.PositionAt(30.0).z);
+}
+
+TEST(ProfileKinks, LShapeHasARightAngleCornerAndStraightLegs) {
+  // Rail-like: a flat top from (0, 0) to (10, 0), then a vertical side face down to (10, 10).
+  std::vector<double> y, z;
+  for (int i = 0; i <= 10; ++i) {
+    y.push_back(i);
+    z.push_back(0.0);
+  }
+  for (int i = 1; i <= 10; ++i) {
+    y.push_back(10.0);
+    z.push_back(i);
+  }
+  ProfileOptions options;
+  options.mirror_z = MirrorZ::kNo;
+  const Profile profile = MakeProfile(y, z, ProfileKind::kRail, options, "L");
+  ASSERT_EQ(profile.kinks, std::vector<std::size_t>{10});
+  const ProfileSpline spline(profile);
+  // Straight legs: the cubics through collinear points are the lines, and arc length is the
+  // chord length, exact to round-off (1e-12 mm on a 20 mm profile).
+  constexpr double kRoundOff = 1e-12;
+  EXPECT_NEAR(spline.length(), 20.0, kRoundOff);
+  EXPECT_NEAR(spline.knots()[10], 10.0, kRoundOff);
+  for (double s = 0.0; s <= 20.0; s += 0.05) {
+    const ProfileVector p = spline.PositionAt(s);
+    EXPECT_NEAR(p.y, s <= 10.0 ? s : 10.0, kRoundOff) << "s = " << s;
+    EXPECT_NEAR(p.z, s <= 10.0 ? 0.0 : s - 10.0, kRoundOff) << "s = " << s;
+    EXPECT_NEAR(spline.CurvatureAt(s), 0.0, 1e-9) << "s = " << s;
+  }
+  // The tangent turns by 90° at the corner; at the corner itself it is the leg after it.
+  const ProfileVector top = spline.TangentAt(10.0 - 1e-9);
+  const ProfileVector side = spline.TangentAt(10.0);
+  EXPECT_NEAR(top.y, 1.0, kRoundOff);
+  EXPECT_NEAR(top.z, 0.0, kRoundOff);
+  EXPECT_NEAR(side.y, 0.0, kRoundOff);
+  EXPECT_NEAR(side.z, 1.0, kRoundOff);
+  EXPECT_NEAR(std::atan2(side.z, side.y) - std::atan2(top.z, top.y), kPi / 2.0, 1e-12);
+  EXPECT_NEAR(spline.InclinationAt(5.0), 0.0, 1e-12);
+  EXPECT_NEAR(spline.InclinationAt(15.0), kPi / 2.0, 1e-12);
+  EXPECT_NEAR(spline.NormalAt(5.0).z, -1.0, 1e-12);  // Up, out of the rail.
+  EXPECT_NEAR(spline.NormalAt(15.0).y, 1.0, 1e-12);  // Towards the field side.
+  // On the top the profile is single-valued; at y = 10 the whole face: the top corner faces up.
+  const ProfileHeight middle = spline.ZAtY(4.5);
+  EXPECT_EQ(middle.status, ProfileHeight::Status::kInside);
+  EXPECT_NEAR(middle.s, 4.5, kRoundOff);
+  const ProfileHeight face = spline.ZAtY(10.0);
+  EXPECT_EQ(face.status, ProfileHeight::Status::kMultiValued);
+  EXPECT_EQ(face.z, 0.0);
+  EXPECT_FALSE(spline.ZAtY(10.5).found());
+}
+
+TEST(ProfileKinks, TwoPointPartBetweenKinksIsStraight) {
+  // A step: flat at z = 0, one 5 mm long slanted segment, flat at z = 5. Both ends of the
+  // slant turn by atan(5) = 78.7° with straight neighbours: two kinks and a two-point part.
+  std::vector<double> y, z;
+  for (int i = 0; i <= 10; ++i) {
+    y.push_back(i);
+    z.push_back(0.0);
+  }
+  for (int i = 0; i <= 10; ++i) {
+    y.push_back(11.0 + i);
+    z.push_back(5.0);
+  }
+  ProfileOptions options;
+  options.mirror_z = MirrorZ::kNo;
+  const Profile profile = MakeProfile(y, z, ProfileKind::kRail, options, "step");
+  ASSERT_EQ(profile.kinks, (std::vector<std::size_t>{10, 11}));
+  const ProfileSpline spline(profile);
+  const double slant = std::hypot(1.0, 5.0);
+  EXPECT_NEAR(spline.length(), 20.0 + slant, 1e-12);
+  const ProfileVector middle = spline.PositionAt(10.0 + 0.5 * slant);
+  EXPECT_NEAR(middle.y, 10.5, 1e-12);
+  EXPECT_NEAR(middle.z, 2.5, 1e-12);
+  const ProfileVector t = spline.TangentAt(10.0 + 0.3 * slant);
+  EXPECT_NEAR(t.y, 1.0 / slant, 1e-12);
+  EXPECT_NEAR(t.z, 5.0 / slant, 1e-12);
+  EXPECT_EQ(spline.CurvatureAt(10.0 + 0.3 * slant), 0.0);
+  const ProfileHeight height = spline.ZAtY(10.25);
+  EXPECT_EQ(height.status, ProfileHeight::Status::kInside);
+  EXPECT_NEAR(height.z, 1.25, 1e-12);
+  EXPECT_NEAR(spline.ZAtY(15.0).z, 5.0, 1e-12);
+
+  // A 1 mm high step turns by 45° twice, √2 mm apart: within 2 mm, so roughness, no kinks.
+  std::vector<double> small_z = z;
+  for (std::size_t i = 11; i < small_z.size(); ++i) small_z[i] = 1.0;
+  EXPECT_TRUE(MakeProfile(y, small_z, ProfileKind::kRail, options).kinks.empty());
+  // ... unless the window is narrowed below the √2 mm between them,
+  options.kink_width = 1.4;
+  EXPECT_EQ(MakeProfile(y, small_z, ProfileKind::kRail, options).kinks.size(), 2u);
+  // ... or the neighbour's 45° do not exceed the low threshold.
+  options.kink_width = 2.0;
+  options.kink_low_rad = 0.8;
+  EXPECT_EQ(MakeProfile(y, small_z, ProfileKind::kRail, options).kinks.size(), 2u);
+}
+
+TEST(ProfileKinks, SmoothingKeepsTheKinksSharp) {
+  ProfileOptions options;
+  options.smoothing = 2.0;
+  const Profile raw = ReadProfile(ProfilePath("groove_r1010.prr"), ProfileKind::kRail);
+  const Profile smooth = ReadProfile(ProfilePath("groove_r1010.prr"), ProfileKind::kRail, options);
+  ASSERT_EQ(smooth.kinks, raw.kinks);
+  for (const std::size_t kink : smooth.kinks) {
+    EXPECT_EQ(smooth.y[kink], raw.y[kink]);  // Held fixed.
+    EXPECT_EQ(smooth.z[kink], raw.z[kink]);
+  }
+  // The plateaus stay flat (a straight line has nothing to smooth). The circle, a wavelength
+  // of 2πR ≈ 63 mm, is damped by (2/63)⁴ ≈ 1e-6 of its 10 mm depth, ~1e-5 mm (seen: 1.6e-5);
+  // 1e-4 mm leaves room for the discrete sum, far below what rounding the corner would do.
+  const ProfileSpline spline(smooth);
+  for (const double y : {-15.0, -10.5, 10.5, 15.0}) EXPECT_NEAR(spline.ZAtY(y).z, -10.1, 1e-9);
+  for (const double y : {-8.0, 0.0, 5.0}) {
+    const ProfileHeight height = spline.ZAtY(y);
+    EXPECT_EQ(height.status, ProfileHeight::Status::kInside);
+    EXPECT_NEAR(height.z, GrooveR1010(y), 1e-4) << "y = " << y;
+  }
+}
+
+TEST(ProfileSplineIndex, SAtYEqualsTryingEveryInterval) {
+  // The y table only selects which knot intervals to try; the roots must be those of trying
+  // all of them, bit for bit: on a dense sweep, at every point's y and at the extremes.
+  for (const bool detect_kinks : {true, false}) {
+    for (const FileExpectation& file : AllProfileFiles()) {
+      ProfileOptions options;
+      options.mirror_y = file.mirror_y;
+      if (!detect_kinks) options.kink_high_rad = kPi;
+      const Profile profile = ReadProfile(ProfilePath(file.name), file.kind, options);
+      const ProfileSpline spline(profile);
+      std::vector<double> ys = profile.y;
+      ys.push_back(spline.YMin());
+      ys.push_back(spline.YMax());
+      ys.push_back(std::nextafter(spline.YMin(), -1e9));
+      ys.push_back(std::nextafter(spline.YMax(), 1e9));
+      constexpr int kSteps = 3001;
+      const double from = spline.YMin() - 1.0;
+      const double to = spline.YMax() + 1.0;
+      for (int i = 0; i <= kSteps; ++i) ys.push_back(from + (to - from) * i / kSteps);
+      int mismatches = 0;
+      for (const double y : ys) {
+        if (spline.SAtY(y) != profile_detail::SplineAccess::SAtYTryingEveryInterval(spline, y)) {
+          ++mismatches;
+        }
+      }
+      EXPECT_EQ(mismatches, 0) << file.name << (detect_kinks ? "" : " without kinks");
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Smoothing
 
 TEST(ProfileSmoothing, KeepsStraightLinesAndHalvesTheFilterWavelength) {
@@ -795,6 +1078,57 @@ TEST(ProfileGslSpline, InterpolatesAndReportsErrors) {
   copy = linear;
   EXPECT_NEAR(copy.Value(0.5), 0.5, 1e-15);
   EXPECT_NEAR(line.Value(0.5), 2.0, 1e-12);
+}
+
+TEST(ProfileGslSpline, CubicEndConditions) {
+  using gsl::CubicEnd;
+  const auto cubic = [](double x) { return 1.0 - 2.0 * x + 0.5 * x * x + 0.25 * x * x * x; };
+  const std::vector<double> x{0.0, 0.7, 1.5, 2.0, 3.1, 4.0};
+  std::vector<double> f;
+  for (const double xi : x) f.push_back(cubic(xi));
+  // Not-a-knot at both ends reproduces a cubic exactly (round-off ~1e-14 at these magnitudes).
+  const gsl::Spline both(x, f, CubicEnd::kNotAKnot, CubicEnd::kNotAKnot);
+  EXPECT_EQ(both.type(), gsl::SplineType::kCubic);
+  for (double at = 0.0; at <= 4.0; at += 0.13) {
+    EXPECT_NEAR(both.Value(at), cubic(at), 1e-12) << at;
+    EXPECT_NEAR(both.Derivative(at), -2.0 + at + 0.75 * at * at, 1e-12) << at;
+    EXPECT_NEAR(both.SecondDerivative(at), 1.0 + 1.5 * at, 1e-12) << at;
+  }
+  // ∫_0.2^3.7 of the cubic.
+  const auto primitive = [](double t) {
+    return t - t * t + t * t * t / 6.0 + t * t * t * t / 16.0;
+  };
+  EXPECT_NEAR(both.Integral(0.2, 3.7), primitive(3.7) - primitive(0.2), 1e-12);
+  EXPECT_THROW(both.Value(4.5), GslError);
+  // Natural at both ends is GSL's natural cubic spline (up to round-off).
+  const gsl::Spline natural(x, f, CubicEnd::kNatural, CubicEnd::kNatural);
+  const gsl::Spline gsl_natural(x, f);
+  for (double at = 0.0; at <= 4.0; at += 0.13) {
+    EXPECT_NEAR(natural.Value(at), gsl_natural.Value(at), 1e-12) << at;
+    EXPECT_NEAR(natural.SecondDerivative(at), gsl_natural.SecondDerivative(at), 1e-12) << at;
+  }
+  // Mixed: zero curvature only at the natural end; the other end follows the data.
+  const gsl::Spline mixed(x, f, CubicEnd::kNotAKnot, CubicEnd::kNatural);
+  EXPECT_NEAR(mixed.SecondDerivative(4.0), 0.0, 1e-12);
+  EXPECT_GT(std::abs(mixed.SecondDerivative(0.0) - 1.0), 0.0);
+  EXPECT_NEAR(mixed.Value(3.1), f[4], 1e-14);
+  // Three knots, not-a-knot at both ends: the parabola through them.
+  const gsl::Spline parabola({0.0, 1.0, 3.0}, {0.0, 1.0, 9.0}, CubicEnd::kNotAKnot,
+                             CubicEnd::kNotAKnot);
+  EXPECT_NEAR(parabola.Value(2.0), 4.0, 1e-14);
+  EXPECT_NEAR(parabola.SecondDerivative(0.5), 2.0, 1e-14);
+  // Three knots with one natural end is still determined.
+  const gsl::Spline three({0.0, 1.0, 3.0}, {0.0, 1.0, 9.0}, CubicEnd::kNatural,
+                          CubicEnd::kNotAKnot);
+  EXPECT_NEAR(three.SecondDerivative(0.0), 0.0, 1e-14);
+  EXPECT_NEAR(three.Value(3.0), 9.0, 1e-13);
+  // Copies keep the end conditions.
+  gsl::Spline copy = natural;
+  copy = mixed;
+  EXPECT_EQ(copy.first_end(), CubicEnd::kNotAKnot);
+  EXPECT_EQ(copy.SecondDerivative(0.0), mixed.SecondDerivative(0.0));
+  EXPECT_THROW(gsl::Spline({0.0, 1.0}, {0.0, 1.0}, CubicEnd::kNatural, CubicEnd::kNatural),
+               GslError);
 }
 
 }  // namespace
