@@ -11,4 +11,14 @@ enum ExitCode : int { kExitOk = 0, kExitGateFailed = 1, kExitBadInput = 2, kExit
 /// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.
 void AddSolveCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc generate SCENE.toml -o TABLE.h5` (SPEC §4.2): exit 0 when the table was
+/// written (failed points are in /status), 2 for bad input, 130 when interrupted.
+void AddGenerateCommand(CLI::App& app, int* exit_code);
+
+/// Registers `wrc info TABLE.h5 [--json]`: axes, outputs, status counts, provenance.
+void AddInfoCommand(CLI::App& app, int* exit_code);
+
+/// Registers `wrc study` (stability, solver accuracy against cost).
+void AddStudyCommand(CLI::App& app, int* exit_code);
+
 }  // namespace wrc::cli

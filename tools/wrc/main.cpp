@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "wrc 0.1.0");
   int exit_code = wrc::cli::kExitOk;
   wrc::cli::AddSolveCommand(app, &exit_code);
+  wrc::cli::AddGenerateCommand(app, &exit_code);
+  wrc::cli::AddInfoCommand(app, &exit_code);
+  wrc::cli::AddStudyCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,365 @@
+// `wrc study stability`: the hard cases of issue 9 swept in fine steps with the planar and the
+// curved method, with the properties that must hold checked and reported (CSV, gnuplot PNGs
+// and a Markdown summary).
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tools/wrc/commands.h"
+#include "wrc/case.h"
+#include "wrc/errors.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Sweep {
+  std::string name;       // file stem
+  std::string title;      // plot title
+  std::string parameter;  // axis label, with unit
+  std::vector<double> values;
+  bool log_axis = false;
+  bool check_continuity = false;  // also solve at half the step and compare jumps
+};
+
+struct Sample {
+  double parameter = 0.0;
+  std::string status;
+  double fx = NAN, fy = NAN, fz = NAN, z = NAN, contact_y = NAN;
+  int n_patches = 0, normal_iterations = 0, tangential_iterations = 0, fz_iterations = 0;
+  double seconds = 0.0;
+  std::string message;
+};
+
+// Manchester benchmark case text (S1002 on UIC60, right wheel), as the reference cases.
+std::string Manchester(const fs::path& profiles, const std::string& method, double dx, double y,
+                       double yaw, double spin, double fz, double mu) {
+  std::ostringstream t;
+  t.precision(12);
+  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \""
+    << (profiles / "MBench_UIC60_v3.prr").string() << "\"\n[wheel]\nprofile = \""
+    << (profiles / "MBench_S1002_v3.prw").string() << "\"\n"
+    << "[track]\ngauge_height = 14.0\ngauge_width = 1435.0\ncant = 0.025\n"
+    << "[wheelset]\nside = \"right\"\nflange_back_distance = 1360.0\n"
+    << "flange_back_position = -70.0\nnominal_radius = 460.0\n"
+    << "[friction]\nmu = " << mu << "\n[grid]\ndx = " << dx << "\nds = " << dx << "\n"
+    << method << "[state]\ny = " << y << "\nfz = " << fz << "\nroll = 0.0\nyaw = " << yaw
+    << "\nvelocity = 2000.0\nspin = " << spin << "\n";
+  return t.str();
+}
+
+std::string HeavyHaul(const fs::path& profiles, const std::string& method, double z, double fz,
+                      double spin) {
+  std::ostringstream t;
+  t.precision(12);
+  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \""
+    << (profiles / "site_b_hr.prr").string() << "\"\n[wheel]\nprofile = \""
+    << (profiles / "worn_high_mileage.prw").string() << "\"\n"
+    << "[track]\ngauge_height = 15.875\ngauge_width = 1435.1\ncant = 0.0\n"
+    << "[wheelset]\nside = \"right\"\nflange_back_distance = 1347.4\n"
+    << "flange_back_position = -70.0\nnominal_radius = 444.0\n"
+    << "[friction]\nalpha_deg = [-30.0, -20.0]\nmu = [0.20, 0.35]\n[grid]\ndx = 0.4\nds = 0.4\n"
+    << method << "[state]\ny = 14.85\n"
+    << (fz > 0.0 ? "fz = " + std::to_string(fz) : "z = " + std::to_string(z))
+    << "\nroll = -0.0013\nyaw = 0.005\nvelocity = 15000.0\nspin = " << spin << "\n";
+  return t.str();
+}
+
+std::string Groove(const fs::path& profiles, const std::string& method, double fz) {
+  std::ostringstream t;
+  t.precision(12);
+  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \""
+    << (profiles / "groove_r1002.prr").string() << "\"\n[wheel]\nprofile = \""
+    << (profiles / "circ_r10.prw").string() << "\"\n"
+    << "[track]\ngauge_height = -1.0\nrail_y = 0.0\nrail_z = 0.0\ncant = 0.0\n"
+    << "[wheelset]\nflange_back_distance = 0.0\nflange_back_position = 0.0\n"
+    << "nominal_radius = 420.0\n[material]\nshear_modulus = 80000.0\npoisson = 0.28\n"
+    << "[friction]\nmu = 0.3\n[grid]\ndx = 0.2\nds = 0.25\n"
+    << method << "[state]\ny = 0.0\nfz = " << fz
+    << "\nroll = 0.0\nyaw = 0.0\nvelocity = 420.0\nomega = -1.0\n";
+  return t.str();
+}
+
+std::vector<double> Range(double from, double to, double step) {
+  std::vector<double> v;
+  const int n = static_cast<int>(std::lround((to - from) / step));
+  for (int k = 0; k <= n; ++k) v.push_back(from + k * step);
+  return v;
+}
+
+std::vector<double> LogRange(double from, double to, int count) {
+  std::vector<double> v;
+  for (int k = 0; k < count; ++k) {
+    v.push_back(from * std::pow(to / from, static_cast<double>(k) / (count - 1)));
+  }
+  return v;
+}
+
+const std::map<std::string, std::string>& Methods() {
+  static const std::map<std::string, std::string> m = {
+      {"curved", "[method]\nreference = \"curved\"\ncombine_distance = 6.0\n"},
+      {"planar",
+       "[method]\nreference = \"planar\"\nposition = \"weighted\"\n"
+       "angle = \"weighted\"\nweights = \"quadratic\"\ncombine_distance = 6.0\n"},
+      {"planar-icp",
+       "[method]\nreference = \"planar\"\nposition = \"initial\"\n"
+       "angle = \"sampled\"\ncombine_distance = 6.0\n"}};
+  return m;
+}
+
+std::string HeavyHaulMethod(const std::string& method) {
+  std::string m = Methods().at(method);
+  const std::string key = "combine_distance = 6.0";
+  return m.replace(m.find(key), key.size(), "combine_distance = 30.0");
+}
+
+Sample SolveOne(const std::string& text, double parameter) {
+  Sample s;
+  s.parameter = parameter;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const Case c = ParseCase(text, fs::current_path(), "stability");
+    const WheelRailResult r = SolveWheelRail(c);
+    s.status = ToString(r.status);
+    s.message = r.message;
+    s.fx = r.force_T(0);
+    s.fy = r.force_T(1);
+    s.fz = r.force_T(2);
+    s.z = r.z;
+    s.contact_y = r.has_force_location ? r.contact_y : NAN;
+    s.n_patches = static_cast<int>(r.patches.size());
+    s.fz_iterations = r.fz_iterations;
+    for (const PatchResult& p : r.patches) {
+      s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
+      s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
+    }
+  } catch (const std::exception& e) {
+    s.status = "error";
+    s.message = e.what();
+  }
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+std::vector<Sample> RunAll(const std::vector<std::pair<std::string, double>>& jobs, int threads) {
+  std::vector<Sample> out(jobs.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&]() {
+    for (std::size_t k = next++; k < jobs.size(); k = next++) {
+      out[k] = SolveOne(jobs[k].first, jobs[k].second);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  return out;
+}
+
+// Largest deviation of a step's change from the mean of its neighbours' changes: a smooth
+// curve gives O(h²) (×1/4 when the step halves), a kink O(h) (×1/2), a jump O(1) (×1).
+double LargestJump(const std::vector<Sample>& s, double Sample::*field) {
+  double worst = 0.0;
+  for (std::size_t k = 1; k + 2 < s.size(); ++k) {
+    const double d0 = s[k].*field - s[k - 1].*field, d1 = s[k + 1].*field - s[k].*field;
+    const double d2 = s[k + 2].*field - s[k + 1].*field;
+    if (std::isfinite(d0) && std::isfinite(d1) && std::isfinite(d2)) {
+      worst = std::max(worst, std::fabs(d1 - 0.5 * (d0 + d2)));
+    }
+  }
+  return worst;
+}
+
+void Plot(const fs::path& dir, const Sweep& sweep, const std::vector<std::string>& methods) {
+  const fs::path script = dir / (sweep.name + ".gp");
+  std::ofstream gp(script);
+  gp << "set terminal pngcairo size 1000,700 font ',10'\nset output '" << sweep.name
+     << ".png'\nset datafile separator ','\nset multiplot layout 2,1 title '" << sweep.title
+     << "'\nset grid\nset key outside right\n"
+     << (sweep.log_axis ? "set logscale x\n" : "") << "set xlabel '" << sweep.parameter
+     << "'\nset ylabel 'F_y / F_z (L/V), -'\nplot ";
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    gp << (m ? ", " : "") << "'" << sweep.name << ".csv' using ($1==" << m
+       << " ? $3 : 1/0):($6/$7) with linespoints pt 7 ps 0.5 title '" << methods[m] << "'";
+  }
+  gp << "\nset ylabel 'contact location y_r of the resultant, mm'\nplot ";
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    gp << (m ? ", " : "") << "'" << sweep.name << ".csv' using ($1==" << m
+       << " ? $3 : 1/0):9 with linespoints pt 7 ps 0.5 title '" << methods[m] << "'";
+  }
+  gp << "\nunset multiplot\n";
+  gp.close();
+  const std::string cmd =
+      "cd '" + dir.string() + "' && gnuplot '" + script.filename().string() + "' 2>&1";
+  if (std::system(cmd.c_str()) != 0) {
+    std::cerr << "wrc study stability: gnuplot failed for " << sweep.name
+              << " (is gnuplot-nox installed?)\n";
+  }
+}
+
+}  // namespace
+
+int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool quick, int threads) {
+  fs::create_directories(out_dir);
+  const double f = quick ? 2.0 : 1.0;  // quick: double every step
+  const double dx = quick ? 0.5 : 0.25;
+  std::vector<Sweep> sweeps;
+  const std::vector<std::string> methods = {"planar", "planar-icp", "curved"};
+  sweeps.push_back({"mbench_y", "Manchester S1002/UIC60, lateral shift, fz = 10 kN",
+                    "wheelset y, mm", Range(0.0, 10.0, 0.1 * f), false, true});
+  sweeps.push_back({"mbench_yaw", "Manchester, y = 4 mm, yaw", "yaw, rad",
+                    Range(-0.03, 0.03, 0.0025 * f), false, false});
+  sweeps.push_back({"mbench_spin", "Manchester, y = 4 mm, spin to full slip", "spin, -",
+                    Range(0.0, 0.03, 0.001 * f), false, false});
+  sweeps.push_back({"mbench_load", "Manchester, y = 0 mm, load 1 N to 300 kN", "fz, N",
+                    LogRange(1.0, 3e5, quick ? 11 : 21), true, false});
+  sweeps.push_back({"mbench_mu0", "Manchester, frictionless (mu = 0)", "wheelset y, mm",
+                    Range(0.0, 10.0, 0.25 * f), false, false});
+  sweeps.push_back({"heavy_haul_z", "Heavy haul y = 14.85 mm, z through the patch merge",
+                    "wheelset z, mm", Range(1.0, 1.3, 0.005 * f), false, true});
+  sweeps.push_back({"heavy_haul_spin", "Heavy haul y = 14.85 mm, fz = 100 kN, spin", "spin, -",
+                    Range(-0.01, 0.01, 0.001 * f), false, false});
+  sweeps.push_back({"groove_load", "Ball R10 in groove R10.02 (nearly conformal), load", "fz, N",
+                    LogRange(100.0, 20000.0, quick ? 6 : 11), true, false});
+  auto method_text = [&](const std::string& m, bool heavy) {
+    return heavy ? HeavyHaulMethod(m) : Methods().at(m);
+  };
+  auto make_text = [&](const std::string& sweep, const std::string& m, double v) {
+    if (sweep == "mbench_y")
+      return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.3);
+    if (sweep == "mbench_yaw")
+      return Manchester(profiles, method_text(m, false), dx, 4, v, 0, 1e4, 0.3);
+    if (sweep == "mbench_spin")
+      return Manchester(profiles, method_text(m, false), dx, 4, 0, v, 1e4, 0.3);
+    if (sweep == "mbench_load")
+      return Manchester(profiles, method_text(m, false), dx, 0, 0, 0, v, 0.3);
+    if (sweep == "mbench_mu0")
+      return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.0);
+    if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(m, true), v, 0.0, 0.0);
+    if (sweep == "heavy_haul_spin") return HeavyHaul(profiles, method_text(m, true), 0, 1e5, v);
+    return Groove(profiles, method_text(m, false), v);
+  };
+
+  std::ofstream summary(out_dir / "README.md");
+  summary << "# Stability of the solver on hard cases\n\n"
+          << "Generated by `wrc study stability" << (quick ? " --quick" : "") << " --out "
+          << out_dir.string() << " --profiles " << profiles.string() << "`. "
+          << "Methods: planar = weighted centre, weighted angle, quadratic weights (wgt-wgt-2);"
+          << " planar-icp = initial contact point, sampled angle; curved = the curved reference"
+          << " surface. Grid dx = ds = " << dx << " mm (heavy haul 0.4 mm, groove 0.2 × 0.25 mm)."
+          << " Combine distance 6 mm (heavy haul 30 mm, the paper's greedy combination).\n\n"
+          << "Jump ratio: the largest deviation of one step's change in fz (z sweeps) or fy"
+          << " (other sweeps) from its neighbours', at half the step divided by at the full"
+          << " step; about 0.25 for a smooth curve, 0.5 for a kink, 1 for a jump.\n\n"
+          << "| sweep | method | points | ok | no contact | not converged | error | max normal it."
+          << " | max tang. it. | max fz it. | jump ratio | s per solve |\n"
+          << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  int failures = 0;
+  for (const Sweep& sweep : sweeps) {
+    std::vector<std::pair<std::string, double>> jobs;
+    for (const std::string& m : methods) {
+      for (double v : sweep.values) jobs.push_back({make_text(sweep.name, m, v), v});
+    }
+    std::vector<double> half;
+    if (sweep.check_continuity) {
+      for (std::size_t k = 0; k + 1 < sweep.values.size(); ++k) {
+        half.push_back(sweep.values[k]);
+        half.push_back(0.5 * (sweep.values[k] + sweep.values[k + 1]));
+      }
+      half.push_back(sweep.values.back());
+      for (const std::string& m : methods) {
+        for (double v : half) jobs.push_back({make_text(sweep.name, m, v), v});
+      }
+    }
+    std::cerr << "stability: " << sweep.name << " (" << jobs.size() << " solves)\n";
+    const std::vector<Sample> results = RunAll(jobs, threads);
+    std::ofstream csv(out_dir / (sweep.name + ".csv"));
+    csv << "method_index,method,parameter,status,fx,fy,fz,z,contact_y,n_patches,normal_it,"
+           "tangential_it,fz_it,seconds,message\n";
+    csv.precision(10);
+    const std::size_t n = sweep.values.size();
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      std::vector<Sample> full(results.begin() + m * n, results.begin() + (m + 1) * n);
+      int counts[4] = {0, 0, 0, 0};
+      int max_n = 0, max_t = 0, max_f = 0;
+      double seconds = 0.0;
+      for (const Sample& s : full) {
+        csv << m << ',' << methods[m] << ',' << s.parameter << ',' << s.status << ',' << s.fx << ','
+            << s.fy << ',' << s.fz << ',' << s.z << ',' << s.contact_y << ',' << s.n_patches << ','
+            << s.normal_iterations << ',' << s.tangential_iterations << ',' << s.fz_iterations
+            << ',' << s.seconds << ",\"" << s.message << "\"\n";
+        counts[s.status == "ok"              ? 0
+               : s.status == "no_contact"    ? 1
+               : s.status == "not_converged" ? 2
+                                             : 3]++;
+        const bool finite = std::isfinite(s.fx) && std::isfinite(s.fy) && std::isfinite(s.fz);
+        if (s.status == "ok" && !finite) ++counts[3];
+        max_n = std::max(max_n, s.normal_iterations);
+        max_t = std::max(max_t, s.tangential_iterations);
+        max_f = std::max(max_f, s.fz_iterations);
+        seconds += s.seconds;
+      }
+      failures += counts[2] + counts[3];
+      std::string ratio = "–";
+      if (sweep.check_continuity) {
+        const std::size_t base = methods.size() * n + m * half.size();
+        std::vector<Sample> fine(results.begin() + base, results.begin() + base + half.size());
+        double Sample::*field = sweep.name == "heavy_haul_z" ? &Sample::fz : &Sample::fy;
+        const double a = LargestJump(full, field), b = LargestJump(fine, field);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.2f", a > 0.0 ? b / a : 0.0);
+        ratio = buf;
+      }
+      char time_buf[32];
+      std::snprintf(time_buf, sizeof time_buf, "%.3f", seconds / full.size());
+      summary << "| " << sweep.name << " | " << methods[m] << " | " << full.size() << " | "
+              << counts[0] << " | " << counts[1] << " | " << counts[2] << " | " << counts[3]
+              << " | " << max_n << " | " << max_t << " | " << max_f << " | " << ratio << " | "
+              << time_buf << " |\n";
+    }
+    csv.close();
+    Plot(out_dir, sweep, methods);
+  }
+  summary << "\nPlots: ";
+  for (const Sweep& s : sweeps) summary << "[" << s.name << "](" << s.name << ".png) ";
+  summary << "\n";
+  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  return failures == 0 ? kExitOk : kExitGateFailed;
+}
+
+void AddStudyCommand(CLI::App& app, int* exit_code) {
+  auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
+  study->require_subcommand(1);
+  auto* stability = study->add_subcommand("stability", "Sweep the hard cases (issue 9) and report");
+  auto out = std::make_shared<std::string>("docs/stability");
+  auto profiles = std::make_shared<std::string>("../shared/profiles");
+  auto quick = std::make_shared<bool>(false);
+  auto threads = std::make_shared<int>(static_cast<int>(std::thread::hardware_concurrency()));
+  stability->add_option("--out", *out, "Output directory (CSV, PNG, README.md)");
+  stability->add_option("--profiles", *profiles, "Directory with the profile files");
+  stability->add_flag("--quick", *quick, "Double every step (for a fast check)");
+  stability->add_option("--threads", *threads, "Worker threads")->check(CLI::PositiveNumber);
+  stability->callback([=]() {
+    if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
+      std::cerr << "wrc study stability: error: --profiles " << *profiles
+                << ": MBench_S1002_v3.prw not found there\n";
+      *exit_code = kExitBadInput;
+      return;
+    }
+    *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
+  });
+}
+
+}  // namespace wrc::cli
