@@ -1,7 +1,11 @@
 #include "wrc/influence.h"
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 namespace wrc {
 namespace {
@@ -88,21 +92,70 @@ double RectangleInfluence(InfluenceComponent c, const CombinedElasticity& m, dou
   throw std::invalid_argument("unknown influence component");
 }
 
+namespace {
+
+// Coefficients depend only on the component, the material, the element size and the offset, so
+// one table per (component, material, dx, dy), grown on demand, serves every grid of a solve
+// (every patch, every vertical force iteration, every point of a table). Values are computed
+// by the same closed form, so cached and fresh coefficients are bit-identical.
+struct CoefficientTable {
+  int half_x = 0, half_y = 0;  // offsets −half…half
+  std::vector<double> values;  // (2·half_x + 1) × (2·half_y + 1), x fastest
+  double at(int di, int dj) const {
+    return values[static_cast<std::size_t>(di + half_x) +
+                  static_cast<std::size_t>(2 * half_x + 1) * static_cast<std::size_t>(dj + half_y)];
+  }
+};
+
+using TableKey = std::tuple<int, double, double, double, double, double>;
+
+std::shared_ptr<const CoefficientTable> Table(InfluenceComponent c, const CombinedElasticity& m,
+                                              double dx, double dy, int half_x, int half_y) {
+  static std::mutex mutex;
+  static std::map<TableKey, std::shared_ptr<const CoefficientTable>> tables;
+  const TableKey key{static_cast<int>(c), m.shear_modulus, m.poisson, m.kappa, dx, dy};
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = tables.find(key);
+    if (it != tables.end() && it->second->half_x >= half_x && it->second->half_y >= half_y) {
+      return it->second;
+    }
+    if (it != tables.end()) {
+      // Grow by half again so that slowly growing grids do not recompute every time.
+      half_x = std::max(half_x, it->second->half_x + it->second->half_x / 2);
+      half_y = std::max(half_y, it->second->half_y + it->second->half_y / 2);
+    }
+  }
+  auto table = std::make_shared<CoefficientTable>();
+  table->half_x = half_x;
+  table->half_y = half_y;
+  table->values.resize(static_cast<std::size_t>(2 * half_x + 1) *
+                       static_cast<std::size_t>(2 * half_y + 1));
+  std::size_t k = 0;
+  for (int dj = -half_y; dj <= half_y; ++dj) {
+    for (int di = -half_x; di <= half_x; ++di) {
+      table->values[k++] = RectangleInfluence(c, m, di * dx, dj * dy, 0.5 * dx, 0.5 * dy);
+    }
+  }
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = tables[key];
+  if (!slot || slot->half_x < table->half_x || slot->half_y < table->half_y) slot = table;
+  return slot;
+}
+
+}  // namespace
+
 InfluenceCoefficients::InfluenceCoefficients(const Grid& grid, const CombinedElasticity& material,
                                              InfluenceComponent component)
     : grid_(grid), component_(component) {
   grid_.Validate();
   const int wx = 2 * grid_.nx - 1;
   const int wy = 2 * grid_.ny - 1;
+  const auto table = Table(component, material, grid_.dx, grid_.dy, grid_.nx - 1, grid_.ny - 1);
   values_.resize(static_cast<std::size_t>(wx) * static_cast<std::size_t>(wy));
-  const double hx = 0.5 * grid_.dx;
-  const double hy = 0.5 * grid_.dy;
+  std::size_t k = 0;
   for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
-    for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
-      values_[static_cast<std::size_t>(di + grid_.nx - 1) +
-              static_cast<std::size_t>(wx) * static_cast<std::size_t>(dj + grid_.ny - 1)] =
-          RectangleInfluence(component, material, di * grid_.dx, dj * grid_.dy, hx, hy);
-    }
+    for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) values_[k++] = table->at(di, dj);
   }
 }
 

@@ -20,6 +20,8 @@ struct PatchContext {
   /// Solve the tangential problem (the case asks for it and this is not a normal-only pass of
   /// the vertical force iteration).
   bool tangential = true;
+  /// Stage timings are added here (not owned).
+  WheelRailTimings* timings = nullptr;
 };
 
 /// Solves one patch with the planar contact approach (paper §2.6, Table 1 methods 2–8).

@@ -1,6 +1,7 @@
 #include "core/wheelrail/patch_common.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace wrc::wr {
@@ -84,11 +85,22 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   for (double v : h) hmin = std::min(hmin, v);
   result.approach = -hmin;
 
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const auto t0 = Clock::now();
   const FftInfluenceOperator op(grid, ctx.material, {InfluenceComponent::kNN});
+  const auto t1 = Clock::now();
   NormalWorkspace nws;
   NormalSolution ns;
   const NormalSummary normal =
       SolveNormal(op, h, NormalLoad::Approach(0.0), ctx.options->normal, nws, ns);
+  const auto t2 = Clock::now();
+  if (ctx.timings) {
+    ctx.timings->influence += seconds(t0, t1);
+    ctx.timings->normal += seconds(t1, t2);
+  }
   result.normal_iterations = normal.iterations;
   result.status = normal.status;
   result.pn = std::move(ns.pressure);
@@ -104,7 +116,9 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
     result.n_slip = result.n_contact;
     return;
   }
+  const auto t3 = Clock::now();
   const SteadyRollingOperator rolling(grid, ctx.material);
+  const auto t4 = Clock::now();
   TangentialProblem tp;
   tp.pressure = result.pn;
   tp.mu = mu;
@@ -116,6 +130,10 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   TangentialSolution ts;
   const TangentialSummary summary = SolveTangential(rolling, tp, ctx.options->tangential, tws, ts);
   result.tangential_iterations = summary.iterations;
+  if (ctx.timings) {
+    ctx.timings->influence += seconds(t3, t4);
+    ctx.timings->tangential += seconds(t4, Clock::now());
+  }
   if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
   result.px = std::move(ts.px);
   result.ps = std::move(ts.py);

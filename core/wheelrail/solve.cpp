@@ -51,7 +51,8 @@ struct Problem {
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
 // only the normal problems (for the vertical force iteration).
-WheelRailResult SolveAt(const Problem& pb, double z, bool tangential = true) {
+WheelRailResult SolveAt(const Problem& pb, double z, bool tangential,
+                        WheelRailTimings* timings) {
   WheelsetKinematics kin = pb.kin;
   kin.z = z;
   const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
@@ -65,6 +66,7 @@ WheelRailResult SolveAt(const Problem& pb, double z, bool tangential = true) {
   ctx.material = pb.material;
   ctx.options = pb.options;
   ctx.tangential = tangential && pb.c->effects.tangential;
+  ctx.timings = timings;
 
   WheelRailResult result;
   result.z = z;
@@ -150,6 +152,12 @@ void MirrorResult(WheelRailResult& r) {
 }  // namespace
 
 WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+  auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  WheelRailTimings timings;
   Validate(c);
   Problem pb;
   pb.c = &c;
@@ -175,9 +183,12 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   pb.kin.vroll = pb.mirror * st.vroll;
   pb.kin.vyaw = pb.mirror * st.vyaw;
   pb.kin.z = 0.0;
+  timings.profiles = since(t_start);
   {
+    const auto t_search = Clock::now();
     const PlacedWheel wheel0(pb.wheel_spline, c.wheelset, pb.kin);
     pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep);
+    timings.search = since(t_search);
   }
   bool any_valid = false;
   double first_contact = 1e300;  // wheelset z at which the surfaces first touch
@@ -194,7 +205,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   WheelRailResult result;
   int iterations = 0;
   if (st.z) {
-    result = SolveAt(pb, *st.z);
+    result = SolveAt(pb, *st.z, true, &timings);
   } else {
     // Prescribed vertical force FZ(TR) on the rail. First z is found on normal-only solves (the
     // tangential tractions add only a small part, fs·sin δ, to FZ(TR)); then full solves
@@ -204,7 +215,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     const double tolerance = options.fz_tolerance * fz;
     auto normal_force = [&](double z) {
       ++iterations;
-      return SolveAt(pb, z, false).force_T(2);
+      return SolveAt(pb, z, false, &timings).force_T(2);
     };
     // Secant on G(z) = F(z)^(2/3): for Hertzian contact F ∝ δ^1.5 with δ = z − z_c, so G is
     // close to linear in z and the secant converges in a few steps. A bracket [lo, hi] with
@@ -264,12 +275,12 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     double z = z1;
     bool met = false;
     if (!c.effects.tangential) {
-      result = SolveAt(pb, z, false);
+      result = SolveAt(pb, z, false, &timings);
       met = std::fabs(result.force_T(2) - fz) <= tolerance;
     } else {
       for (int pass = 0; pass < 8 && !met; ++pass) {
         ++iterations;
-        result = SolveAt(pb, z, true);
+        result = SolveAt(pb, z, true, &timings);
         const double error = result.force_T(2) - fz;
         met = std::fabs(error) <= tolerance;
         z -= error / stiffness;
@@ -283,6 +294,10 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
   LocateResultant(pb, result);
   result.fz_iterations = iterations;
+  timings.total = since(t_start);
+  timings.geometry = std::max(0.0, timings.total - timings.profiles - timings.search -
+                                       timings.influence - timings.normal - timings.tangential);
+  result.timings = timings;
   result.y = st.y;
   result.roll = st.roll;
   result.yaw = st.yaw;

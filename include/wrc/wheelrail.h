@@ -58,6 +58,17 @@ struct PatchResult {
   std::vector<double> curve_y, curve_z, curve_angle;
 };
 
+/// Where the time of a solve went, s (summed over all patches and vertical force iterations).
+struct WheelRailTimings {
+  double profiles = 0.0;   ///< Reading, repairing and placing the profiles.
+  double search = 0.0;     ///< Contact search along the rail.
+  double geometry = 0.0;   ///< Patch references, grids, undeformed distance, rigid slip.
+  double influence = 0.0;  ///< Influence coefficients and FFT plans.
+  double normal = 0.0;     ///< Normal problems.
+  double tangential = 0.0; ///< Tangential problems.
+  double total = 0.0;
+};
+
 /// Result of a wheel–rail solve (SPEC §3 JSON).
 struct WheelRailResult {
   SolverStatus status = SolverStatus::kConverged;
@@ -69,6 +80,7 @@ struct WheelRailResult {
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  ///< Total force on the rail, wheelset frame.
   std::vector<PatchResult> patches;                   ///< Field side first.
   int fz_iterations = 0;
+  WheelRailTimings timings;
   /// Where the total force acts with the smallest moment (paper Eq. 25–27), moved along the
   /// force onto the rail surface; track frame. Valid when `has_force_location`.
   Eigen::Vector3d force_location_T = Eigen::Vector3d::Zero();

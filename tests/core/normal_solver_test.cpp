@@ -119,9 +119,10 @@ TEST(NormalSolver, PrescribedApproachGivesHertzForce) {
   ASSERT_EQ(summary.status, SolverStatus::kConverged) << summary.iterations;
   // F ∝ δ^{3/2}: a 1 % approach error would be a 1.5 % force error; we ask for 1.5 %.
   EXPECT_NEAR(sol.force, 10000.0, 0.015 * 10000.0);
-  // Complementarity: no interpenetration anywhere, no gap under pressure.
+  // Complementarity: no interpenetration anywhere, no gap under pressure, to the solver's
+  // relative tolerance (NormalOptions::tolerance = 1e-8).
   for (std::size_t i = 0; i < sol.pressure.size(); ++i) {
-    EXPECT_GE(sol.deformed[i], -1e-9 * sol.approach);
+    EXPECT_GE(sol.deformed[i], -1e-8 * sol.approach);
     if (sol.pressure[i] > 0.0) {
       EXPECT_NEAR(sol.deformed[i], 0.0, 1e-6 * sol.approach);
     }

@@ -143,7 +143,15 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
                                                      {"contact_angle", r.contact_angle}}
                                               : json(nullptr)},
       {"iterations", {{"fz", r.fz_iterations}}},
-      {"timing_s", {{"total", seconds}}}};
+      {"timing_s",
+       {{"total", seconds},
+        {"solver", r.timings.total},
+        {"profiles", r.timings.profiles},
+        {"search", r.timings.search},
+        {"geometry", r.timings.geometry},
+        {"influence", r.timings.influence},
+        {"normal", r.timings.normal},
+        {"tangential", r.timings.tangential}}}};
 }
 
 // Per patch: fields.csv over the patch grid, and for the curved reference its curve.
