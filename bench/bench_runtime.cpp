@@ -1,0 +1,114 @@
+// Cost of one table lookup (wrc_table_eval / wrc_table_eval_deriv) on a 4-D table of the size a
+// scene produces (y × roll × yaw × spin = 41 × 5 × 5 × 9, 6 outputs), multilinear and cubic,
+// with and without derivatives, for random and for coherent (trajectory-like) query order.
+// Targets: <= 100 ns multilinear, <= 500 ns cubic (values only).
+//
+//   build-runtime/bench/bench_runtime --benchmark_min_time=0.5
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "tests/runtime/table_writer.h"
+#include "wrc/runtime.h"
+
+namespace {
+
+constexpr int kAxes = 4;
+constexpr int kOutputs = 6;
+constexpr int kPoints = 1 << 14;  // Query points per set, cycled through.
+constexpr double kTwoPi = 6.283185307179586;
+
+enum class Order { kRandom, kCoherent };
+
+// One table file and two handles, made on first use and kept for the process.
+struct Fixture {
+  wrc::test::ScratchFile file{"bench"};
+  wrc_table* linear = nullptr;
+  wrc_table* cubic = nullptr;
+  std::vector<double> random_points;
+  std::vector<double> coherent_points;
+
+  Fixture() {
+    wrc::test::TableContent content;
+    content.axes = {{"y", wrc::test::Linspace(-10.0, 10.0, 41)},
+                    {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
+                    {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
+                    {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+    content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
+    // Smooth creep-force-like shapes with a flange-contact rise in y.
+    content.function = [](int k, const std::vector<double>& x) {
+      const double flange = x[0] > 6.0 ? 2000.0 * (x[0] - 6.0) : 0.0;
+      return (k + 1) * (3000.0 * std::tanh(300.0 * x[3]) + 200.0 * x[0] + 1e5 * x[2]) +
+             flange * (k == 1) + 1e6 * x[1];
+    };
+    wrc::test::WriteTable(file.path(), content);
+    if (wrc_table_open(file.path().c_str(), &linear) != 0 ||
+        wrc_table_open(file.path().c_str(), &cubic) != 0 ||
+        wrc_table_set_interpolation(cubic, WRC_INTERP_CUBIC) != 0) {
+      std::fprintf(stderr, "bench_runtime: %s\n", wrc_last_error());
+      std::abort();
+    }
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int i = 0; i < kPoints; ++i) {
+      random_points.insert(random_points.end(), {10.0 * unit(random), 0.002 * unit(random),
+                                                 0.01 * unit(random), 0.01 * unit(random)});
+    }
+    // A wheelset hunting along the track: slow lateral oscillation, small steps between calls
+    // (an integrator's successive stages), so consecutive lookups hit the same or nearby cells.
+    for (int i = 0; i < kPoints; ++i) {
+      const double s = kTwoPi * i / 4096.0;
+      coherent_points.insert(coherent_points.end(),
+                             {8.0 * std::sin(s), 0.0015 * std::sin(2.0 * s + 0.3),
+                              0.008 * std::cos(s), 0.006 * std::sin(3.0 * s)});
+    }
+  }
+  ~Fixture() {
+    wrc_table_close(linear);
+    wrc_table_close(cubic);
+  }
+};
+
+Fixture& GetFixture() {
+  static Fixture fixture;
+  return fixture;
+}
+
+void BM_Lookup(benchmark::State& state, int mode, Order order, bool derivatives) {
+  Fixture& fixture = GetFixture();
+  const wrc_table* table = mode == WRC_INTERP_CUBIC ? fixture.cubic : fixture.linear;
+  const std::vector<double>& points =
+      order == Order::kRandom ? fixture.random_points : fixture.coherent_points;
+  double out[kOutputs];
+  double d_out[kOutputs * kAxes];
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const double* point = &points[i * kAxes];
+    const int flags = derivatives ? wrc_table_eval_deriv(table, point, out, d_out)
+                                  : wrc_table_eval(table, point, out);
+    benchmark::DoNotOptimize(flags);
+    benchmark::DoNotOptimize(out);
+    benchmark::DoNotOptimize(d_out);
+    i = (i + 1) & (kPoints - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+BENCHMARK_CAPTURE(BM_Lookup, linear / random, WRC_INTERP_LINEAR, Order::kRandom, false);
+BENCHMARK_CAPTURE(BM_Lookup, linear / coherent, WRC_INTERP_LINEAR, Order::kCoherent, false);
+BENCHMARK_CAPTURE(BM_Lookup, linear / random / deriv, WRC_INTERP_LINEAR, Order::kRandom, true);
+BENCHMARK_CAPTURE(BM_Lookup, linear / coherent / deriv, WRC_INTERP_LINEAR, Order::kCoherent, true);
+BENCHMARK_CAPTURE(BM_Lookup, cubic / random, WRC_INTERP_CUBIC, Order::kRandom, false);
+BENCHMARK_CAPTURE(BM_Lookup, cubic / coherent, WRC_INTERP_CUBIC, Order::kCoherent, false);
+BENCHMARK_CAPTURE(BM_Lookup, cubic / random / deriv, WRC_INTERP_CUBIC, Order::kRandom, true);
+BENCHMARK_CAPTURE(BM_Lookup, cubic / coherent / deriv, WRC_INTERP_CUBIC, Order::kCoherent, true);
+
+}  // namespace
+
+BENCHMARK_MAIN();

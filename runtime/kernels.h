@@ -1,0 +1,84 @@
+#pragma once
+/// @file kernels.h
+/// The innermost sums of multilinear and cubic interpolation. Table::EvalLinear/EvalCubic
+/// reduce a point to weights and data offsets (the *Terms below); a kernel forms the weighted
+/// sums. Kernels are compiled twice (kernels.inc): for the baseline instruction set and, on
+/// x86-64 with GCC or Clang, for x86-64-v3 (AVX2 + FMA); SelectKernels() picks one by CPU
+/// detection when a table is loaded. Internal to wrc_runtime.
+///
+/// Both sums split the D active axes into a lower half (active axes 0 .. L-1, L = ceil(D/2))
+/// and an upper half. A datum's weight is the product of a lower-half and an upper-half weight,
+/// both tabulated once per evaluation, and the sum is arranged as
+///   Σ_upper U · (Σ_lower L · data),
+/// so inner loops have compile-time lengths (2^L data, kChunk outputs), run two independent
+/// accumulators (2^L is even), and a derivative along an upper axis merely rescales the inner
+/// sums.
+
+#include <cstddef>
+
+#include "runtime/table.h"
+
+namespace wrc::runtime {
+
+/// Largest number of lower-half (or upper-half) combinations: 2^ceil(kMaxAxes / 2).
+constexpr std::size_t kMaxHalf = std::size_t{1} << ((kMaxAxes + 1) / 2);
+
+/// Multilinear interpolation at one point: the 2^D corners of the cell.
+struct LinearTerms {
+  const double* values;  ///< First output of the cell's lower corner node.
+  std::size_t n_outputs;
+  std::size_t n_axes;
+  int n_active;                   ///< D >= 1.
+  int n_lower_axes;               ///< L = ceil(D / 2).
+  std::size_t n_upper;            ///< 2^(D-L) upper-half corners (2^L lower ones).
+  double lower_weight[kMaxHalf];  ///< ∏ over lower axes of (1 - t_j or t_j).
+  double upper_weight[kMaxHalf];
+  std::size_t lower_offset[kMaxHalf];  ///< Of each lower-half corner, in doubles.
+  std::size_t upper_offset[kMaxHalf];
+  /// Per active axis j: its half's weights with axis j's factor replaced by ∓1/h.
+  double d_weight[kMaxAxes][kMaxHalf];
+  int axis[kMaxAxes];              ///< Axis index of active axis j.
+  bool derivative_zero[kMaxAxes];  ///< Clamped on active axis j: derivative 0.
+};
+
+/// Cubic Hermite interpolation at one point: 2^D corners × 2^D data (subsets S) per corner.
+/// A half's weight [corner][subset] is ∏ over its axes j of basis_j[2·c_j + s_j], basis_j being
+/// (h00, h·h10, h01, h·h11) at t_j.
+struct CubicTerms {
+  const double* base;  ///< Hermite data of the cell's lower corner node, first output.
+  std::size_t n_outputs;
+  std::size_t n_axes;
+  int n_active;
+  int n_lower_axes;
+  std::size_t n_upper;                 ///< 2^(D-L) upper corners, also upper subsets.
+  std::size_t lower_offset[kMaxHalf];  ///< Of each lower-half corner, in doubles.
+  std::size_t upper_offset[kMaxHalf];
+  double lower_weight[kMaxHalf][kMaxHalf];
+  double upper_weight[kMaxHalf][kMaxHalf];
+  /// With axis j's factor differentiated in x_j: lower axes j < L, upper ones at j - L.
+  double d_lower_weight[(kMaxAxes + 1) / 2][kMaxHalf][kMaxHalf];
+  double d_upper_weight[kMaxAxes / 2][kMaxHalf][kMaxHalf];
+  int axis[kMaxAxes];
+  bool derivative_zero[kMaxAxes];
+};
+
+/// Writes out (n_outputs values) and, unless d_out is null, the active axes' entries of d_out
+/// (other entries untouched; callers zero them).
+struct Kernels {
+  void (*linear)(const LinearTerms& terms, double* out, double* d_out);
+  void (*cubic)(const CubicTerms& terms, double* out, double* d_out);
+};
+
+namespace generic {
+extern const Kernels kKernels;
+}
+#if defined(WRC_RUNTIME_X86_64_V3)
+namespace x86_64_v3 {
+extern const Kernels kKernels;
+}
+#endif
+
+/// The fastest kernels this CPU runs.
+const Kernels& SelectKernels();
+
+}  // namespace wrc::runtime

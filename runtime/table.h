@@ -1,0 +1,151 @@
+#pragma once
+/// @file table.h
+/// The in-memory table behind a wrc_table handle: loading (table_load.cpp) and interpolation
+/// (table_eval.cpp, table_cubic.cpp). Internal to wrc_runtime; users see include/wrc/runtime.h.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "wrc/runtime.h"
+
+namespace wrc::runtime {
+
+constexpr int kMaxAxes = WRC_MAX_AXES;
+
+struct Kernels;  // kernels.h
+
+/// Doubles allocated past the end of the value and Hermite arrays: with more than 8 outputs the
+/// kernels read whole chunks of 8 and may run up to 7 doubles past the last datum (kernels.inc).
+constexpr std::size_t kReadPadding = 8;
+
+/// A loading failure with its WRC_ERR_* code; what() names file, object and problem.
+class LoadError : public std::runtime_error {
+ public:
+  LoadError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  int code() const noexcept { return code_; }
+
+ private:
+  int code_;
+};
+
+/// Records the calling thread's error message (printf-style; never allocates). Implemented in
+/// c_api.cpp next to wrc_last_error().
+void SetLastError(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
+struct Axis {
+  std::string name;
+  std::string unit;
+  std::vector<double> values;  ///< Strictly ascending.
+  /// 1 / (values[i + 1] - values[i]) per cell: evaluation multiplies instead of dividing.
+  std::vector<double> inverse_steps;
+  /// Nearly uniform spacing: the cell is found from (x - first) / mean step and a short walk.
+  bool nearly_uniform = false;
+  double inverse_mean_step = 0.0;
+};
+
+struct Output {
+  std::string name;
+  std::string unit;
+};
+
+/// Bits of the per-cell flag arrays.
+enum CellFlag : std::uint8_t {
+  kCellStatus = WRC_FLAG_STATUS,  ///< A node entering the result has non-zero status.
+  kCellNonFinite = 4,             ///< A corner node holds a non-finite value.
+};
+
+class Table {
+ public:
+  /// Reads and validates the file; throws LoadError.
+  static Table Load(const std::string& path);
+
+  // Move-only: lookup_ points into the axes' vectors, whose buffers survive moves, not copies.
+  Table(Table&&) noexcept = default;
+  Table& operator=(Table&&) noexcept = default;
+  Table(const Table&) = delete;
+  Table& operator=(const Table&) = delete;
+
+  int num_axes() const { return static_cast<int>(axes_.size()); }
+  int num_outputs() const { return static_cast<int>(outputs_.size()); }
+  const Axis& axis(int i) const { return axes_[static_cast<std::size_t>(i)]; }
+  const Output& output(int i) const { return outputs_[static_cast<std::size_t>(i)]; }
+  const std::string& path() const { return path_; }
+  /// Root string attributes (format, wrc_version, scene, ...).
+  const std::map<std::string, std::string, std::less<>>& attributes() const { return attributes_; }
+
+  int interpolation() const { return interpolation_; }
+  /// Switches mode; builds the cubic node data on first use (may throw std::bad_alloc).
+  void SetInterpolation(int mode);
+
+  /// Interpolates; d_out may be null. Returns flags >= 0 or a negative WRC_ERR_* code after
+  /// SetLastError. Thread-safe, allocation-free.
+  int Eval(const double* point, double* out, double* d_out) const noexcept;
+
+ private:
+  /// Cell of one axis coordinate: lower node index, local coordinate t in [0, 1], step h.
+  /// (No member initialisers: Eval fills what it uses, nothing is zeroed per call.)
+  struct CellCoordinate {
+    int index;
+    double t;
+    double step;
+    double inverse_step;
+  };
+  /// Everything Eval needs about the point, computed once for both modes.
+  struct Located {
+    int flags;
+    std::size_t base_node;           ///< Node at the cell's lower corner.
+    CellCoordinate cell[kMaxAxes];   ///< Per active axis.
+    bool derivative_zero[kMaxAxes];  ///< Per active axis: clamped outside the range.
+  };
+
+  /// What locating a coordinate on an active axis needs, gathered in one place.
+  struct AxisLookup {
+    const double* nodes;
+    const double* inverse_steps;
+    int size;
+    bool nearly_uniform;
+    double inverse_mean_step;
+    std::size_t node_stride;
+  };
+
+  Table() = default;
+  /// Fills active_axes_, node strides and lookup_ once axes_ is final.
+  void IndexAxes();
+  /// Locates the point's cell; or a negative code (NaN) after SetLastError.
+  int Locate(const double* point, Located& located) const noexcept;
+  int ReportNan(int axis) const noexcept;
+  void EvalLinear(const Located& located, double* out, double* d_out) const noexcept;
+  void EvalCubic(const Located& located, double* out, double* d_out) const noexcept;
+  void BuildCubic();
+  /// After evaluating a cell with a non-finite corner: WRC_ERR_NO_DATA if a result is NaN,
+  /// else flags.
+  int CheckFinite(int flags, const double* out, const double* d_out) const noexcept;
+
+  std::string path_;
+  std::vector<Axis> axes_;
+  std::vector<Output> outputs_;
+  std::map<std::string, std::string, std::less<>> attributes_;  // less<>: lookup by const char*
+
+  std::vector<int> active_axes_;          ///< Axes with more than one node, ascending.
+  AxisLookup lookup_[kMaxAxes];           ///< Per active axis.
+  const Kernels* kernels_ = nullptr;      ///< Summation kernels for this CPU.
+  std::vector<std::size_t> node_stride_;  ///< Per axis, in nodes (row-major).
+  std::size_t num_nodes_ = 0;
+
+  std::vector<double> values_;              ///< num_nodes × num_outputs (+ kReadPadding).
+  std::vector<std::int8_t> status_;         ///< num_nodes.
+  std::vector<std::uint8_t> linear_flags_;  ///< Per cell: kCellStatus | kCellNonFinite.
+
+  int interpolation_ = WRC_INTERP_LINEAR;
+  /// Cubic node data: per node, per subset S of active axes (bit j = active axis j), per output:
+  /// the mixed derivative ∂^|S| f / ∏_{j∈S} ∂x_j estimated by limited slopes. Empty until needed.
+  std::vector<double> hermite_;
+  std::vector<std::uint8_t> cubic_flags_;
+};
+
+}  // namespace wrc::runtime

@@ -1,0 +1,300 @@
+// Cubic mode: tensor-product cubic Hermite interpolation with monotonicity-preserving slopes.
+//
+// Node data. Along one grid line, the slope at node j is first estimated by differentiating the
+// interpolating polynomial through the (up to) five nearest nodes, a window centred on j where
+// the axis allows (degree 4: exact for cubics, on any spacing, also at the ends). It is then
+// limited (Fritsch–Carlson, in the simple box form of Hyman 1983) with the secants d⁻, d⁺ of
+// the two adjacent cells:
+//   - d⁻·d⁺ <= 0 (data extremum or a flat side): slope 0;
+//   - slope against the direction of the data: 0;
+//   - otherwise |slope| <= 3·min(|d⁻|, |d⁺|) (at an end node: 3·|d|).
+// With both end slopes of a cell in [0, 3d] the cubic on that cell is monotone, so along every
+// grid line the interpolant stays between the cell's two node values: no overshoot at contact
+// jumps, and flat (no-contact) plateaus stay flat. Where the data are monotone-consistent (the
+// estimate has the secants' sign and lies within the bound) the estimate is used unchanged, and
+// a function that is cubic along the axis is reproduced exactly. At data extrema the limiter sets
+// the slope to 0: there exactness is traded for the no-overshoot property (the error is then
+// at most h·|f'(node)|·4/27 per cell, 4/27 = max|h10|); tests/runtime states both.
+//
+// In N dimensions each node stores, per output, the value and all mixed derivatives
+// D_S f = ∂^|S| f / ∏_{j∈S} ∂x_j for every subset S of the active axes, obtained by applying the
+// limited slope operator along the axes of S in increasing order to the value field. The tensor-
+// product Hermite interpolant of that data is C¹ everywhere in the table (on a cell face, the
+// function and its derivatives depend only on the data at the nodes of that face) and reproduces
+// functions that are cubic along each axis wherever no limiter acts. The cost is 2^D numbers per
+// node and output, built on the first switch to cubic mode.
+//
+// Evaluation sums the 4^D terms (two nodes × {value, slope} per axis) with the kernels of
+// kernels.h; the weights factor into a lower-axes and an upper-axes table, built here (HalfWeights)
+// once per evaluation. Scratch space is about 20 KiB on the stack (sized for WRC_MAX_AXES);
+// nothing is allocated.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "runtime/kernels.h"
+#include "runtime/table.h"
+
+namespace wrc::runtime {
+namespace {
+
+constexpr int kWindow = 5;  // Nodes in the slope estimate's polynomial (degree 4).
+
+// Derivative at x[j] of the polynomial through (x[m], f[m]), m < width.
+double PolynomialSlope(const double* x, const double* f, int width, int j) {
+  double slope = 0.0;
+  for (int m = 0; m < width; ++m) {
+    double coefficient = 0.0;
+    if (m == j) {
+      for (int k = 0; k < width; ++k) {
+        if (k != j) coefficient += 1.0 / (x[j] - x[k]);
+      }
+    } else {
+      // L_m'(x_j): of the product rule's terms only the one differentiating (x - x_j) survives.
+      double numerator = 1.0;
+      double denominator = 1.0;
+      for (int k = 0; k < width; ++k) {
+        if (k == m) continue;
+        denominator *= x[m] - x[k];
+        if (k != j) numerator *= x[j] - x[k];
+      }
+      coefficient = numerator / denominator;
+    }
+    slope += coefficient * f[m];
+  }
+  return slope;
+}
+
+// The limiter described at the top of the file.
+double LimitSlope(double slope, bool has_left, double left, bool has_right, double right) {
+  double direction = 0.0;
+  double bound = 0.0;
+  if (has_left && has_right) {
+    if (left * right <= 0.0) return 0.0;
+    direction = left > 0.0 ? 1.0 : -1.0;
+    bound = 3.0 * std::min(std::abs(left), std::abs(right));
+  } else if (has_left || has_right) {
+    const double secant = has_left ? left : right;
+    if (secant == 0.0) return 0.0;
+    direction = secant > 0.0 ? 1.0 : -1.0;
+    bound = 3.0 * std::abs(secant);
+  } else {
+    return 0.0;
+  }
+  if (slope * direction <= 0.0) return 0.0;
+  return direction * std::min(std::abs(slope), bound);
+}
+
+// First node of the slope window of node j on an axis of n nodes whose finite values at j span
+// [lo, hi] (at most 4 nodes either side).
+int WindowStart(int j, int lo, int hi) {
+  const int width = std::min(kWindow, hi - lo + 1);
+  return std::clamp(j - width / 2, lo, hi - width + 1);
+}
+
+// Limited slopes of one grid line. Non-finite values (failed nodes) are left out: windows and
+// secants use only the finite run around each node, so a NaN node does not spoil its
+// neighbours' slopes; its own slope is NaN.
+void LineSlopes(const double* x, int n, const double* f, double* slope) {
+  for (int j = 0; j < n; ++j) {
+    if (!std::isfinite(f[j])) {
+      slope[j] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    int lo = j;
+    while (lo > 0 && j - lo < kWindow - 1 && std::isfinite(f[lo - 1])) --lo;
+    int hi = j;
+    while (hi < n - 1 && hi - j < kWindow - 1 && std::isfinite(f[hi + 1])) ++hi;
+    const int width = std::min(kWindow, hi - lo + 1);
+    const int start = WindowStart(j, lo, hi);
+    const double estimate =
+        width >= 2 ? PolynomialSlope(x + start, f + start, width, j - start) : 0.0;
+    const bool has_left = j > lo;
+    const bool has_right = j < hi;
+    const double left = has_left ? (f[j] - f[j - 1]) / (x[j] - x[j - 1]) : 0.0;
+    const double right = has_right ? (f[j + 1] - f[j]) / (x[j + 1] - x[j]) : 0.0;
+    slope[j] = LimitSlope(estimate, has_left, left, has_right, right);
+  }
+}
+
+// Tabulates [corner][subset] products over the kAxes active axes from `begin`; the factor of
+// axis `differentiated` (if among them, else -1) comes from d_basis. Compile-time kAxes: the
+// loops unroll completely.
+template <int kAxes>
+void HalfWeights(const double (*basis)[4], const double (*d_basis)[4], int begin,
+                 int differentiated, double (*weight)[kMaxHalf]) {
+  constexpr std::size_t kCount = std::size_t{1} << kAxes;
+  const double* factors[kAxes];
+  for (int i = 0; i < kAxes; ++i) {
+    factors[i] = begin + i == differentiated ? d_basis[begin + i] : basis[begin + i];
+  }
+  for (std::size_t corner = 0; corner < kCount; ++corner) {
+    for (std::size_t subset = 0; subset < kCount; ++subset) {
+      double product = 1.0;
+      for (int i = 0; i < kAxes; ++i) {
+        product *= factors[i][2 * ((corner >> i) & 1) + ((subset >> i) & 1)];
+      }
+      weight[corner][subset] = product;
+    }
+  }
+}
+
+void HalfWeights(int n_axes, const double (*basis)[4], const double (*d_basis)[4], int begin,
+                 int differentiated, double (*weight)[kMaxHalf]) {
+  static_assert((kMaxAxes + 1) / 2 <= 4, "HalfWeights covers at most 4 axes");
+  switch (n_axes) {
+    case 0:
+      weight[0][0] = 1.0;
+      break;
+    case 1:
+      HalfWeights<1>(basis, d_basis, begin, differentiated, weight);
+      break;
+    case 2:
+      HalfWeights<2>(basis, d_basis, begin, differentiated, weight);
+      break;
+    case 3:
+      HalfWeights<3>(basis, d_basis, begin, differentiated, weight);
+      break;
+    default:
+      HalfWeights<4>(basis, d_basis, begin, differentiated, weight);
+      break;
+  }
+}
+
+}  // namespace
+
+void Table::BuildCubic() {
+  const int n_active = static_cast<int>(active_axes_.size());
+  const std::size_t n_out = outputs_.size();
+  const std::size_t n_subsets = std::size_t{1} << n_active;
+  const std::size_t block = n_subsets * n_out;
+  std::vector<double> data(num_nodes_ * block + kReadPadding, 0.0);
+  for (std::size_t node = 0; node < num_nodes_; ++node) {
+    for (std::size_t k = 0; k < n_out; ++k) data[node * block + k] = values_[node * n_out + k];
+  }
+  std::size_t longest = 1;
+  for (const Axis& axis : axes_) longest = std::max(longest, axis.values.size());
+  std::vector<double> line(longest);
+  std::vector<double> slopes(longest);
+  for (std::size_t subset = 1; subset < n_subsets; ++subset) {
+    // D_S f = L_j(D_{S∖j} f) with j the highest axis in S: axes applied in increasing order.
+    int j = n_active - 1;
+    while ((subset >> j & 1) == 0) --j;
+    const std::size_t source = subset ^ (std::size_t{1} << j);
+    const Axis& axis = axes_[static_cast<std::size_t>(active_axes_[static_cast<std::size_t>(j)])];
+    const int n = static_cast<int>(axis.values.size());
+    const std::size_t stride =
+        node_stride_[static_cast<std::size_t>(active_axes_[static_cast<std::size_t>(j)])];
+    for (std::size_t first = 0; first < num_nodes_; ++first) {
+      if (first / stride % static_cast<std::size_t>(n) != 0) continue;  // Not the start of a line.
+      for (std::size_t k = 0; k < n_out; ++k) {
+        for (int i = 0; i < n; ++i) {
+          line[static_cast<std::size_t>(i)] =
+              data[(first + static_cast<std::size_t>(i) * stride) * block + source * n_out + k];
+        }
+        LineSlopes(axis.values.data(), n, line.data(), slopes.data());
+        for (int i = 0; i < n; ++i) {
+          data[(first + static_cast<std::size_t>(i) * stride) * block + subset * n_out + k] =
+              slopes[static_cast<std::size_t>(i)];
+        }
+      }
+    }
+  }
+
+  // Status flags per cell: every node inside the slope windows of the cell's corners enters the
+  // result; the window ranges of the two corners along each axis are OR-ed, axis by axis.
+  std::vector<std::uint8_t> flags(num_nodes_);
+  for (std::size_t node = 0; node < num_nodes_; ++node) {
+    flags[node] = status_[node] != 0 ? kCellStatus : 0;
+  }
+  std::vector<std::uint8_t> dilated(num_nodes_);
+  for (int a : active_axes_) {
+    const int n = static_cast<int>(axes_[static_cast<std::size_t>(a)].values.size());
+    const std::size_t stride = node_stride_[static_cast<std::size_t>(a)];
+    const int width = std::min(kWindow, n);
+    for (std::size_t node = 0; node < num_nodes_; ++node) {
+      const int i = static_cast<int>(node / stride % static_cast<std::size_t>(n));
+      const int upper = std::min(i + 1, n - 1);
+      const int lo =
+          WindowStart(i, std::max(0, i - (kWindow - 1)), std::min(n - 1, i + kWindow - 1));
+      const int hi = WindowStart(upper, std::max(0, upper - (kWindow - 1)),
+                                 std::min(n - 1, upper + kWindow - 1)) +
+                     width - 1;
+      std::uint8_t combined = 0;
+      for (int m = lo; m <= hi; ++m) {
+        combined |= flags[node + static_cast<std::size_t>(m) * stride -
+                          static_cast<std::size_t>(i) * stride];
+      }
+      dilated[node] = combined;
+    }
+    flags.swap(dilated);
+  }
+  for (std::size_t node = 0; node < num_nodes_; ++node) {
+    flags[node] |= linear_flags_[node] & kCellNonFinite;
+  }
+  hermite_.swap(data);
+  cubic_flags_.swap(flags);
+}
+
+void Table::EvalCubic(const Located& located, double* out, double* d_out) const noexcept {
+  CubicTerms terms;
+  terms.n_outputs = outputs_.size();
+  terms.n_axes = axes_.size();
+  terms.n_active = static_cast<int>(active_axes_.size());
+  const std::size_t block = (std::size_t{1} << terms.n_active) * terms.n_outputs;
+  terms.base = hermite_.data() + located.base_node * block;
+  if (d_out != nullptr) {
+    for (std::size_t i = 0; i < terms.n_outputs * terms.n_axes; ++i) d_out[i] = 0.0;
+  }
+  if (terms.n_active == 0) {  // A single node.
+    for (std::size_t k = 0; k < terms.n_outputs; ++k) out[k] = terms.base[k];
+    return;
+  }
+  terms.n_lower_axes = (terms.n_active + 1) / 2;
+  terms.n_upper = std::size_t{1} << (terms.n_active - terms.n_lower_axes);
+  double basis[kMaxAxes][4];
+  double d_basis[kMaxAxes][4];
+  terms.lower_offset[0] = 0;
+  terms.upper_offset[0] = 0;
+  for (int j = 0; j < terms.n_active; ++j) {
+    const double t = located.cell[j].t;
+    const double h = located.cell[j].step;
+    const double inverse_h = located.cell[j].inverse_step;
+    const double t2 = t * t;
+    const double t3 = t2 * t;
+    basis[j][0] = 2.0 * t3 - 3.0 * t2 + 1.0;  // h00
+    basis[j][1] = h * (t3 - 2.0 * t2 + t);    // h·h10
+    basis[j][2] = -2.0 * t3 + 3.0 * t2;       // h01
+    basis[j][3] = h * (t3 - t2);              // h·h11
+    d_basis[j][0] = (6.0 * t2 - 6.0 * t) * inverse_h;
+    d_basis[j][1] = 3.0 * t2 - 4.0 * t + 1.0;
+    d_basis[j][2] = (6.0 * t - 6.0 * t2) * inverse_h;
+    d_basis[j][3] = 3.0 * t2 - 2.0 * t;
+    terms.axis[j] = active_axes_[static_cast<std::size_t>(j)];
+    terms.derivative_zero[j] = located.derivative_zero[j];
+    const bool lower_axis = j < terms.n_lower_axes;
+    const int bit = lower_axis ? j : j - terms.n_lower_axes;
+    std::size_t* offset = lower_axis ? terms.lower_offset : terms.upper_offset;
+    const std::size_t half = std::size_t{1} << bit;
+    const std::size_t step = lookup_[j].node_stride * block;
+    for (std::size_t c = 0; c < half; ++c) offset[c + half] = offset[c] + step;
+  }
+  const int n_upper_axes = terms.n_active - terms.n_lower_axes;
+  HalfWeights(terms.n_lower_axes, basis, d_basis, 0, -1, terms.lower_weight);
+  HalfWeights(n_upper_axes, basis, d_basis, terms.n_lower_axes, -1, terms.upper_weight);
+  if (d_out != nullptr) {
+    for (int j = 0; j < terms.n_active; ++j) {
+      if (terms.derivative_zero[j]) continue;
+      if (j < terms.n_lower_axes) {
+        HalfWeights(terms.n_lower_axes, basis, d_basis, 0, j, terms.d_lower_weight[j]);
+      } else {
+        HalfWeights(n_upper_axes, basis, d_basis, terms.n_lower_axes, j,
+                    terms.d_upper_weight[j - terms.n_lower_axes]);
+      }
+    }
+  }
+  kernels_->cubic(terms, out, d_out);
+}
+
+}  // namespace wrc::runtime

@@ -1,0 +1,278 @@
+// Loading and validation of a table file (SPEC §4.2) into a runtime::Table.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "runtime/hdf5/hdf5.h"
+#include "runtime/kernels.h"
+#include "runtime/table.h"
+
+namespace wrc::runtime {
+namespace {
+
+constexpr const char* kFormatName = "wrc-table";
+constexpr std::int64_t kFormatVersion = 1;
+
+std::string ShapeText(const std::vector<h5::Size>& shape) {
+  std::ostringstream text;
+  text << '[';
+  for (std::size_t i = 0; i < shape.size(); ++i) text << (i ? "," : "") << shape[i];
+  text << ']';
+  return text.str();
+}
+
+std::string NodeText(std::size_t node, const std::vector<Axis>& axes,
+                     const std::vector<std::size_t>& stride) {
+  std::ostringstream text;
+  text << '(';
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::size_t index = node / stride[a] % axes[a].values.size();
+    text << (a ? ", " : "") << axes[a].name << '=' << axes[a].values[index];
+  }
+  text << ')';
+  return text.str();
+}
+
+[[noreturn]] void Invalid(const std::string& where, const std::string& problem) {
+  throw LoadError(WRC_ERR_FORMAT, where + ": " + problem);
+}
+
+std::string OptionalStringAttribute(const h5::Object& object, const std::string& name) {
+  return object.HasAttribute(name) ? object.ReadStringAttribute(name) : std::string();
+}
+
+void CheckRootAttributes(const h5::File& file) {
+  const std::string where = file.FileName() + ":/";
+  if (!file.HasAttribute("format")) {
+    Invalid(where, "attribute 'format' is missing: not a wrc table");
+  }
+  const std::string format = file.ReadStringAttribute("format");
+  if (format != kFormatName) {
+    Invalid(where, "attribute 'format' is \"" + format + "\", expected \"" + kFormatName + "\"");
+  }
+  if (!file.HasAttribute("format_version")) Invalid(where, "attribute 'format_version' is missing");
+  const std::int64_t version = file.ReadIntAttribute("format_version");
+  if (version != kFormatVersion) {
+    Invalid(where, "attribute 'format_version' is " + std::to_string(version) +
+                       ", this runtime reads version " + std::to_string(kFormatVersion));
+  }
+}
+
+Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
+  const std::string where = axes_group.FileName() + ":/axes/" + name;
+  if (name.empty() || name.find('/') != std::string::npos) {
+    Invalid(axes_group.Where(), "axis name \"" + name + "\" in 'order' is not a valid name");
+  }
+  if (axes_group.Kind(name) != h5::LinkKind::kDataset) {
+    Invalid(where, "listed in /axes 'order' but there is no such dataset");
+  }
+  const h5::Dataset dataset = axes_group.OpenDataset(name);
+  const std::vector<h5::Size> shape = dataset.Shape();
+  if (shape.size() != 1) Invalid(where, "must be 1-D, has shape " + ShapeText(shape));
+  if (shape[0] < 1) Invalid(where, "is empty");
+  if (dataset.Type().Class() != h5::TypeClass::kFloat) {
+    Invalid(where, "must be floating point, is " + dataset.Type().Describe());
+  }
+  Axis axis;
+  axis.name = name;
+  axis.unit = OptionalStringAttribute(dataset, "unit");
+  axis.values = dataset.Read<double>();
+  for (std::size_t i = 0; i < axis.values.size(); ++i) {
+    if (!std::isfinite(axis.values[i])) {
+      Invalid(where, "value " + std::to_string(i) + " is not finite");
+    }
+    if (i > 0 && !(axis.values[i] > axis.values[i - 1])) {
+      std::ostringstream problem;
+      problem.precision(17);
+      problem << "values must be strictly ascending, but value " << i << " (" << axis.values[i]
+              << ") follows " << axis.values[i - 1];
+      Invalid(where, problem.str());
+    }
+  }
+  const std::size_t n = axis.values.size();
+  if (n >= 2) {
+    const double mean_step = (axis.values[n - 1] - axis.values[0]) / static_cast<double>(n - 1);
+    double max_deviation = 0.0;
+    for (std::size_t i = 1; i < n; ++i) {
+      max_deviation =
+          std::max(max_deviation, std::abs(axis.values[i] - axis.values[i - 1] - mean_step));
+    }
+    // Node i deviates from first + i·mean_step by at most n·max_deviation; when that is under
+    // half a step, the index computed from the mean step is off by at most one cell and a short
+    // walk finds the cell. Otherwise Eval uses binary search.
+    axis.nearly_uniform = max_deviation * static_cast<double>(n) <= 0.5 * mean_step;
+    axis.inverse_mean_step = 1.0 / mean_step;
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      axis.inverse_steps.push_back(1.0 / (axis.values[i + 1] - axis.values[i]));
+    }
+  }
+  return axis;
+}
+
+}  // namespace
+
+void Table::IndexAxes() {
+  // Node layout: row-major, the last axis varies fastest (HDF5's order).
+  const std::size_t n_axes = axes_.size();
+  node_stride_.assign(n_axes, 1);
+  for (std::size_t a = n_axes - 1; a > 0; --a) {
+    node_stride_[a - 1] = node_stride_[a] * axes_[a].values.size();
+  }
+  num_nodes_ = node_stride_[0] * axes_[0].values.size();
+  active_axes_.clear();
+  for (std::size_t a = 0; a < n_axes; ++a) {
+    const Axis& axis = axes_[a];
+    if (axis.values.size() < 2) continue;
+    AxisLookup& lookup = lookup_[active_axes_.size()];
+    lookup.nodes = axis.values.data();
+    lookup.inverse_steps = axis.inverse_steps.data();
+    lookup.size = static_cast<int>(axis.values.size());
+    lookup.nearly_uniform = axis.nearly_uniform;
+    lookup.inverse_mean_step = axis.inverse_mean_step;
+    lookup.node_stride = node_stride_[a];
+    active_axes_.push_back(static_cast<int>(a));
+  }
+  kernels_ = &SelectKernels();
+}
+
+Table Table::Load(const std::string& path) {
+  std::error_code ignored;
+  if (!std::filesystem::exists(path, ignored)) {
+    throw LoadError(WRC_ERR_FILE, path + ": no such file");
+  }
+  const auto lock = h5::LibraryLock();
+  std::optional<h5::File> opened;
+  try {
+    opened.emplace(h5::File::Open(path));
+  } catch (const h5::Error& error) {
+    throw LoadError(WRC_ERR_FILE, std::string(error.what()));
+  }
+  const h5::File& file = *opened;
+  const std::string where = path + ":";
+  CheckRootAttributes(file);
+
+  Table table;
+  table.path_ = path;
+  for (const std::string& name : file.AttributeNames()) {
+    const h5::Attribute attribute = file.OpenAttribute(name);
+    if (attribute.Type().Class() == h5::TypeClass::kString &&
+        attribute.Space().NumElements() == 1) {
+      table.attributes_[name] = attribute.ReadString();
+    }
+  }
+
+  // Axes, in the order the /axes attribute 'order' gives.
+  if (file.Kind("axes") != h5::LinkKind::kGroup) Invalid(where + "/axes", "group is missing");
+  const h5::Group axes_group = file.OpenGroup("axes");
+  if (!axes_group.HasAttribute("order")) Invalid(where + "/axes", "attribute 'order' is missing");
+  const std::vector<std::string> axis_names = axes_group.ReadStringArrayAttribute("order");
+  if (axis_names.empty()) Invalid(where + "/axes", "attribute 'order' lists no axes");
+  if (axis_names.size() > static_cast<std::size_t>(kMaxAxes)) {
+    Invalid(where + "/axes", "attribute 'order' lists " + std::to_string(axis_names.size()) +
+                                 " axes, at most " + std::to_string(kMaxAxes) + " are supported");
+  }
+  std::set<std::string> seen;
+  for (const std::string& name : axis_names) {
+    if (!seen.insert(name).second) {
+      Invalid(where + "/axes", "attribute 'order' lists \"" + name + "\" twice");
+    }
+    table.axes_.push_back(ReadAxis(axes_group, name));
+  }
+  std::vector<h5::Size> grid_shape;
+  for (const Axis& axis : table.axes_) grid_shape.push_back(axis.values.size());
+
+  table.IndexAxes();
+
+  // Outputs: the /outputs attribute 'order' when present, else the group's member order.
+  if (file.Kind("outputs") != h5::LinkKind::kGroup) {
+    Invalid(where + "/outputs", "group is missing");
+  }
+  const h5::Group outputs_group = file.OpenGroup("outputs");
+  std::vector<std::string> output_names = outputs_group.MemberNames();
+  if (outputs_group.HasAttribute("order")) {
+    std::vector<std::string> ordered = outputs_group.ReadStringArrayAttribute("order");
+    std::vector<std::string> sorted_members = output_names;
+    std::vector<std::string> sorted_order = ordered;
+    std::sort(sorted_members.begin(), sorted_members.end());
+    std::sort(sorted_order.begin(), sorted_order.end());
+    if (sorted_members != sorted_order) {
+      Invalid(where + "/outputs", "attribute 'order' does not list exactly the datasets present");
+    }
+    output_names = std::move(ordered);
+  }
+  if (output_names.empty()) Invalid(where + "/outputs", "holds no outputs");
+  const std::size_t n_out = output_names.size();
+  if (table.num_nodes_ > std::numeric_limits<std::size_t>::max() / 8 / n_out) {
+    Invalid(where + "/outputs", "table too large for this machine");
+  }
+  table.values_.assign(table.num_nodes_ * n_out + kReadPadding, 0.0);
+  for (std::size_t k = 0; k < n_out; ++k) {
+    const std::string& name = output_names[k];
+    const std::string output_where = where + "/outputs/" + name;
+    if (outputs_group.Kind(name) != h5::LinkKind::kDataset) Invalid(output_where, "not a dataset");
+    const h5::Dataset dataset = outputs_group.OpenDataset(name);
+    const std::vector<h5::Size> shape = dataset.Shape();
+    if (shape != grid_shape) {
+      Invalid(output_where, "shape " + ShapeText(shape) +
+                                " does not match the axis lengths in /axes 'order' " +
+                                ShapeText(grid_shape));
+    }
+    if (dataset.Type().Class() != h5::TypeClass::kFloat) {
+      Invalid(output_where, "must be floating point, is " + dataset.Type().Describe());
+    }
+    const std::vector<double> values = dataset.Read<double>();
+    for (std::size_t node = 0; node < table.num_nodes_; ++node) {
+      table.values_[node * n_out + k] = values[node];
+    }
+    table.outputs_.push_back(Output{name, OptionalStringAttribute(dataset, "unit")});
+  }
+
+  // Status of every node.
+  if (file.Kind("status") != h5::LinkKind::kDataset) {
+    Invalid(where + "/status", "dataset is missing");
+  }
+  const h5::Dataset status = file.OpenDataset("status");
+  if (status.Shape() != grid_shape) {
+    Invalid(where + "/status", "shape " + ShapeText(status.Shape()) +
+                                   " does not match the axis lengths " + ShapeText(grid_shape));
+  }
+  if (status.Type().Class() != h5::TypeClass::kInteger) {
+    Invalid(where + "/status", "must be integer (int8), is " + status.Type().Describe());
+  }
+  table.status_ = status.Read<std::int8_t>();
+
+  // A node that solved fine must carry finite numbers; failed nodes may hold NaN, which Eval
+  // reports as WRC_ERR_NO_DATA rather than returning it.
+  std::vector<std::uint8_t> node_flags(table.num_nodes_, 0);
+  for (std::size_t node = 0; node < table.num_nodes_; ++node) {
+    if (table.status_[node] != 0) node_flags[node] |= kCellStatus;
+    for (std::size_t k = 0; k < n_out; ++k) {
+      if (std::isfinite(table.values_[node * n_out + k])) continue;
+      if (table.status_[node] == 0) {
+        Invalid(where + "/outputs/" + output_names[k],
+                "non-finite value at node " + NodeText(node, table.axes_, table.node_stride_) +
+                    " whose /status is 0 (ok)");
+      }
+      node_flags[node] |= kCellNonFinite;
+    }
+  }
+
+  // Per-cell flags for multilinear interpolation: OR over the 2^D cell corners.
+  table.linear_flags_ = node_flags;
+  for (int a : table.active_axes_) {
+    const std::size_t stride = table.node_stride_[static_cast<std::size_t>(a)];
+    const std::size_t size = table.axes_[static_cast<std::size_t>(a)].values.size();
+    for (std::size_t node = 0; node < table.num_nodes_; ++node) {
+      if (node / stride % size + 1 < size)
+        table.linear_flags_[node] |= table.linear_flags_[node + stride];
+    }
+  }
+  return table;
+}
+
+}  // namespace wrc::runtime

@@ -1,0 +1,200 @@
+// Evaluation must not allocate. This test binary replaces the global operator new/delete and
+// interposes malloc and friends (glibc: the executable's definitions take precedence over
+// libc's for every library in the process) with versions that count calls made by threads that
+// switched counting on.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <vector>
+
+#include "tests/runtime/table_writer.h"
+#include "wrc/runtime.h"
+#include "wrc/runtime.hpp"
+
+// AddressSanitizer interposes malloc itself; bypassing it would break its bookkeeping. Under
+// ASan only operator new is counted.
+#if defined(__SANITIZE_ADDRESS__)
+#define WRC_TEST_INTERPOSE_MALLOC 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define WRC_TEST_INTERPOSE_MALLOC 0
+#endif
+#endif
+#ifndef WRC_TEST_INTERPOSE_MALLOC
+#define WRC_TEST_INTERPOSE_MALLOC 1
+#endif
+
+namespace {
+
+std::atomic<long> g_allocations{0};
+thread_local bool t_counting = false;
+
+void NoteAllocation() {
+  if (t_counting) g_allocations.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace
+
+#if WRC_TEST_INTERPOSE_MALLOC
+extern "C" {
+// glibc's internal entry points of its allocator.
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* pointer, std::size_t size);
+void* __libc_memalign(std::size_t alignment, std::size_t size);
+
+void* malloc(std::size_t size) noexcept {
+  NoteAllocation();
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) noexcept {
+  NoteAllocation();
+  return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, std::size_t size) noexcept {
+  NoteAllocation();
+  return __libc_realloc(pointer, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  NoteAllocation();
+  return __libc_memalign(alignment, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  NoteAllocation();
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** pointer, std::size_t alignment, std::size_t size) noexcept {
+  NoteAllocation();
+  *pointer = __libc_memalign(alignment, size);
+  return *pointer != nullptr ? 0 : ENOMEM;
+}
+}  // extern "C"
+#endif
+
+// The replacements pair operator new with malloc and operator delete with free, which GCC's
+// -Wmismatched-new-delete cannot see once it inlines library code around them.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+void* operator new(std::size_t size) {
+  NoteAllocation();
+  if (void* pointer = std::malloc(size == 0 ? 1 : size)) return pointer;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  NoteAllocation();
+  if (void* pointer = std::malloc(size == 0 ? 1 : size)) return pointer;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  NoteAllocation();
+  return std::malloc(size == 0 ? 1 : size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  NoteAllocation();
+  return std::malloc(size == 0 ? 1 : size);
+}
+void operator delete(void* pointer) noexcept { std::free(pointer); }
+void operator delete[](void* pointer) noexcept { std::free(pointer); }
+void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
+void operator delete[](void* pointer, std::size_t) noexcept { std::free(pointer); }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+namespace {
+
+// Counts allocations of the calling thread while alive.
+class AllocationCounter {
+ public:
+  AllocationCounter() : start_(g_allocations.load()) { t_counting = true; }
+  ~AllocationCounter() { t_counting = false; }
+  long count() const { return g_allocations.load() - start_; }
+
+ private:
+  long start_;
+};
+
+// Keeps the compiler from eliding a new/delete or malloc/free pair.
+void* volatile g_sink = nullptr;
+
+TEST(RuntimeAllocation, CounterSeesAllocations) {
+  long count = 0;
+  {
+    AllocationCounter counter;
+    int* number = new int(3);
+    g_sink = number;
+    delete number;
+    void* block = std::malloc(64);
+    g_sink = block;
+    std::free(block);
+    std::vector<double> vector(100);
+    g_sink = vector.data();
+    count = counter.count();
+  }
+  // new + malloc + vector (whose new calls malloc again when malloc is interposed).
+  EXPECT_GE(count, WRC_TEST_INTERPOSE_MALLOC ? 4 : 2);
+}
+
+TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
+  wrc::test::ScratchFile scratch("allocation");
+  wrc::test::TableContent content;
+  content.axes = {{"y", wrc::test::Linspace(-10, 10, 41)},
+                  {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
+                  {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
+                  {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+  content.outputs = {"fx", "fy", "fz", "mx", "my", "mz", "pmax", "contact_y", "contact_angle"};
+  content.function = [](int k, const std::vector<double>& x) {
+    return std::sin(0.3 * x[0] + k) + 100.0 * x[1] + std::cos(300.0 * x[3]) * x[2];
+  };
+  content.status = [](const std::vector<double>& x) -> std::int8_t { return x[0] == 5.0 ? 1 : 0; };
+  wrc::test::WriteTable(scratch.path(), content);
+
+  wrc_table* linear = nullptr;
+  wrc_table* cubic = nullptr;
+  ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &linear), 0) << wrc_last_error();
+  ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &cubic), 0) << wrc_last_error();
+  ASSERT_EQ(wrc_table_set_interpolation(cubic, WRC_INTERP_CUBIC), 0);
+  const wrc::Table wrapped(scratch.path());
+
+  // Points inside, outside (clamped) and NaN (error path), prepared before counting.
+  std::mt19937 random(31);
+  std::uniform_real_distribution<double> unit(-1.3, 1.3);
+  std::vector<double> points;
+  for (int i = 0; i < 1000; ++i) {
+    points.push_back(10.0 * unit(random));
+    points.push_back(0.002 * unit(random));
+    points.push_back(0.01 * unit(random));
+    points.push_back(i % 100 == 0 ? std::nan("") : 0.01 * unit(random));
+  }
+  std::vector<double> out(9);
+  std::vector<double> d_out(9 * 4);
+  int results[4] = {0, 0, 0, 0};  // Count of errors per call kind, to check the paths ran.
+  long count = 0;
+  {
+    AllocationCounter counter;
+    for (std::size_t i = 0; i < points.size(); i += 4) {
+      const double* point = &points[i];
+      results[0] += wrc_table_eval(linear, point, out.data()) < 0;
+      results[1] += wrc_table_eval_deriv(linear, point, out.data(), d_out.data()) < 0;
+      results[2] += wrc_table_eval(cubic, point, out.data()) < 0;
+      results[3] += wrc_table_eval_deriv(cubic, point, out.data(), d_out.data()) < 0;
+      if (!std::isnan(point[3])) wrapped.eval(point, out.data(), d_out.data());
+      g_sink = const_cast<char*>(wrc_last_error());
+    }
+    count = counter.count();
+  }
+  EXPECT_EQ(count, 0);
+  for (int errors : results) EXPECT_EQ(errors, 10);  // The NaN points took the error path.
+  wrc_table_close(linear);
+  wrc_table_close(cubic);
+}
+
+}  // namespace

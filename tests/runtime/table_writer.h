@@ -1,0 +1,138 @@
+#pragma once
+/// @file table_writer.h
+/// Test helper (header-only, so benchmarks and the C test's support code can include it too):
+/// writes a table file laid out as SPEC §4.2 prescribes, from axes and a function, with the
+/// wrc::h5 wrapper. Also a scratch-file helper that deletes the file afterwards.
+
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "runtime/hdf5/hdf5.h"
+
+namespace wrc::test {
+
+struct TableAxis {
+  std::string name;
+  std::vector<double> values;
+  std::string unit = "mm";
+};
+
+/// What to write. The function gives output k at the node with the given coordinates (one per
+/// axis, in axis order); status likewise gives the node's /status (default: 0 everywhere).
+struct TableContent {
+  std::vector<TableAxis> axes;
+  std::vector<std::string> outputs;
+  std::function<double(int output, const std::vector<double>& coordinates)> function;
+  std::function<std::int8_t(const std::vector<double>& coordinates)> status;
+  /// Write the /outputs attribute 'order' (the runtime otherwise uses creation order).
+  bool write_output_order = true;
+};
+
+/// n values from first to last, equally spaced (last exactly).
+inline std::vector<double> Linspace(double first, double last, int n) {
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    values[static_cast<std::size_t>(i)] =
+        i == n - 1 ? last : first + (last - first) * i / static_cast<double>(n - 1);
+  }
+  return values;
+}
+
+/// Writes content to path (overwriting) as a complete, valid table.
+inline void WriteTable(const std::string& path, const TableContent& content) {
+  h5::File file = h5::File::Create(path);
+  file.WriteStringAttribute("format", "wrc-table");
+  file.WriteIntAttribute("format_version", 1);
+  file.WriteStringAttribute("wrc_version", "0.1.0-test");
+  file.WriteStringAttribute("created", "2024-01-01T00:00:00Z");
+  file.WriteStringAttribute("scene", "# written by tests/runtime/table_writer.h\n[table]\n");
+  file.WriteStringAttribute("rail_profile_sha256", std::string(64, '0'));
+  file.WriteStringAttribute("wheel_profile_sha256", std::string(64, '1'));
+
+  h5::Group axes = file.CreateGroup("axes");
+  std::vector<std::string> order;
+  std::vector<h5::Size> shape;
+  for (const TableAxis& axis : content.axes) {
+    h5::Dataset dataset = axes.WriteDataset<double>(
+        axis.name, {static_cast<h5::Size>(axis.values.size())}, axis.values);
+    dataset.WriteStringAttribute("unit", axis.unit);
+    order.push_back(axis.name);
+    shape.push_back(axis.values.size());
+  }
+  axes.WriteStringArrayAttribute("order", order);
+
+  // Enumerate nodes in row-major order (last axis fastest), as the datasets store them.
+  std::size_t n_nodes = 1;
+  for (h5::Size n : shape) n_nodes *= n;
+  std::vector<std::vector<double>> coordinates(n_nodes, std::vector<double>(shape.size()));
+  for (std::size_t node = 0; node < n_nodes; ++node) {
+    std::size_t rest = node;
+    for (std::size_t a = shape.size(); a-- > 0;) {
+      coordinates[node][a] = content.axes[a].values[rest % shape[a]];
+      rest /= shape[a];
+    }
+  }
+
+  h5::Group outputs = file.CreateGroup("outputs");
+  for (std::size_t k = 0; k < content.outputs.size(); ++k) {
+    std::vector<double> values(n_nodes);
+    for (std::size_t node = 0; node < n_nodes; ++node) {
+      values[node] = content.function(static_cast<int>(k), coordinates[node]);
+    }
+    h5::Dataset dataset =
+        outputs.WriteDataset(content.outputs[k], shape, values, h5::CompressedChecked());
+    dataset.WriteStringAttribute("unit", "N");
+  }
+  if (content.write_output_order) outputs.WriteStringArrayAttribute("order", content.outputs);
+
+  std::vector<std::int8_t> status(n_nodes, 0);
+  if (content.status) {
+    for (std::size_t node = 0; node < n_nodes; ++node)
+      status[node] = content.status(coordinates[node]);
+  }
+  file.WriteDataset("status", shape, status, h5::CompressedChecked());
+  file.WriteDataset("solve_time_s", shape, std::vector<float>(n_nodes, 0.01f),
+                    h5::CompressedChecked());
+
+  h5::Group profiles = file.CreateGroup("profiles");
+  const std::string rail_text = "# rail profile\n0 0\n1 0\n";
+  const std::string wheel_text = "# wheel profile\n0 0\n1 1\n";
+  h5::Dataset rail = profiles.WriteDataset(
+      "rail", {rail_text.size()}, std::vector<std::uint8_t>(rail_text.begin(), rail_text.end()));
+  rail.WriteStringAttribute("name", "rail.prr");
+  h5::Dataset wheel =
+      profiles.WriteDataset("wheel", {wheel_text.size()},
+                            std::vector<std::uint8_t>(wheel_text.begin(), wheel_text.end()));
+  wheel.WriteStringAttribute("name", "wheel.prw");
+}
+
+/// A unique file name in the temporary directory, removed when the object goes away.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::string& stem) {
+    static std::atomic<int> counter{0};
+    path_ =
+        (std::filesystem::temp_directory_path() / ("wrc-test-" + std::to_string(::getpid()) + "-" +
+                                                   std::to_string(counter++) + "-" + stem + ".h5"))
+            .string();
+  }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  ~ScratchFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace wrc::test
