@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "wrc/errors.h"
+
 namespace wrc::wr {
 
 PatchReference FindReference(const PatchContext& ctx, const PatchExtent& extent) {
@@ -78,6 +80,12 @@ Grid PatchGrid(double dx, double ds, double x_min, double x_max, double s_min, d
 void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
                  const std::vector<double>& wx, const std::vector<double>& wy,
                  const std::vector<double>& mu, PatchResult& result) {
+  if (grid.size() > static_cast<std::size_t>(ctx.options->max_patch_elements)) {
+    throw InputError(ctx.c->source_name + ": a contact patch needs " + std::to_string(grid.nx) +
+                     " x " + std::to_string(grid.ny) + " elements, more than the limit of " +
+                     std::to_string(ctx.options->max_patch_elements) +
+                     ": coarsen grid.dx/grid.ds or check the pose");
+  }
   result.grid = grid;
   result.n_pot = static_cast<int>(grid.size());
   result.h = h;

@@ -51,8 +51,7 @@ struct Problem {
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
 // only the normal problems (for the vertical force iteration).
-WheelRailResult SolveAt(const Problem& pb, double z, bool tangential,
-                        WheelRailTimings* timings) {
+WheelRailResult SolveAt(const Problem& pb, double z, bool tangential, WheelRailTimings* timings) {
   WheelsetKinematics kin = pb.kin;
   kin.z = z;
   const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
@@ -70,6 +69,18 @@ WheelRailResult SolveAt(const Problem& pb, double z, bool tangential,
 
   WheelRailResult result;
   result.z = z;
+  double deepest = 0.0;
+  for (const auto& sample : pb.search.samples) {
+    if (sample.valid) deepest = std::max(deepest, z - sample.gap);
+  }
+  if (deepest > pb.options->max_interpenetration) {
+    throw InputError(pb.c->source_name + ": at wheelset z = " + std::to_string(z) +
+                     " mm the wheel sinks " + std::to_string(deepest) +
+                     " mm into the rail, beyond the " +
+                     std::to_string(pb.options->max_interpenetration) +
+                     " mm of elastic contact: check the wheelset pose, the placement " +
+                     "([track], [wheelset]) or state.fz");
+  }
   const auto extents = wr::FindPatches(pb.search, z, pb.c->method.combine_distance);
   const Eigen::Vector3d rail_origin(0.0, pb.rail->origin()(0), pb.rail->origin()(1));
   for (const PatchExtent& e : extents) {

@@ -26,6 +26,15 @@ struct WheelRailOptions {
   int max_fz_iterations = 100;
   /// Keep the grids and fields of each patch in the result (for `wrc solve --out`).
   bool keep_fields = false;
+  /// Largest vertical interpenetration of the undeformed surfaces accepted, mm. Elastic wheel–
+  /// rail contact has approaches of ~0.01–0.2 mm (0.1 mm at 300 kN on the Manchester pair);
+  /// more than 1 mm means a pose or placement error (a wheel sunk into the rail), which would
+  /// otherwise produce meganewton forces and grids too large to solve. Bad input, not a result.
+  double max_interpenetration = 1.0;
+  /// Largest potential contact area of one patch, in elements: a guard against grids that
+  /// cannot be solved in reasonable time (the tangential solver's cost grows with the square
+  /// of the contact size). 200 000 elements is 40 × 40 mm at 0.1 mm.
+  int max_patch_elements = 200000;
   /// With a prescribed fz: a wheelset height to start the iteration from (e.g. the solution of
   /// a neighbouring point of a sweep); NaN starts from first contact.
   double z_guess = std::numeric_limits<double>::quiet_NaN();
@@ -60,12 +69,12 @@ struct PatchResult {
 
 /// Where the time of a solve went, s (summed over all patches and vertical force iterations).
 struct WheelRailTimings {
-  double profiles = 0.0;   ///< Reading, repairing and placing the profiles.
-  double search = 0.0;     ///< Contact search along the rail.
-  double geometry = 0.0;   ///< Patch references, grids, undeformed distance, rigid slip.
-  double influence = 0.0;  ///< Influence coefficients and FFT plans.
-  double normal = 0.0;     ///< Normal problems.
-  double tangential = 0.0; ///< Tangential problems.
+  double profiles = 0.0;    ///< Reading, repairing and placing the profiles.
+  double search = 0.0;      ///< Contact search along the rail.
+  double geometry = 0.0;    ///< Patch references, grids, undeformed distance, rigid slip.
+  double influence = 0.0;   ///< Influence coefficients and FFT plans.
+  double normal = 0.0;      ///< Normal problems.
+  double tangential = 0.0;  ///< Tangential problems.
   double total = 0.0;
 };
 

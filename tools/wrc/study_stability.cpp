@@ -61,8 +61,9 @@ std::string Manchester(const fs::path& profiles, const std::string& method, doub
   return t.str();
 }
 
+// The paper's §4.1 case, as reference/cases/heavy_haul.
 std::string HeavyHaul(const fs::path& profiles, const std::string& method, double z, double fz,
-                      double spin) {
+                      double omega) {
   std::ostringstream t;
   t.precision(12);
   t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \""
@@ -70,11 +71,11 @@ std::string HeavyHaul(const fs::path& profiles, const std::string& method, doubl
     << (profiles / "worn_high_mileage.prw").string() << "\"\n"
     << "[track]\ngauge_height = 15.875\ngauge_width = 1435.1\ncant = 0.0\n"
     << "[wheelset]\nside = \"right\"\nflange_back_distance = 1347.4\n"
-    << "flange_back_position = -70.0\nnominal_radius = 444.0\n"
+    << "flange_back_position = 0.0\nnominal_radius = 444.0\n"
     << "[friction]\nalpha_deg = [-30.0, -20.0]\nmu = [0.20, 0.35]\n[grid]\ndx = 0.4\nds = 0.4\n"
     << method << "[state]\ny = 14.85\n"
     << (fz > 0.0 ? "fz = " + std::to_string(fz) : "z = " + std::to_string(z))
-    << "\nroll = -0.0013\nyaw = 0.005\nvelocity = 15000.0\nspin = " << spin << "\n";
+    << "\nroll = -0.0013\nyaw = 0.005\nvelocity = 15000.0\nomega = " << omega << "\n";
   return t.str();
 }
 
@@ -247,8 +248,8 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
       return Manchester(profiles, method_text(m, false), dx, 0, 0, 0, v, 0.3);
     if (sweep == "mbench_mu0")
       return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.0);
-    if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(m, true), v, 0.0, 0.0);
-    if (sweep == "heavy_haul_spin") return HeavyHaul(profiles, method_text(m, true), 0, 1e5, v);
+    if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(m, true), v, 0.0, -32.1);
+    if (sweep == "heavy_haul_omega") return HeavyHaul(profiles, method_text(m, true), 0, 1e5, v);
     return Groove(profiles, method_text(m, false), v);
   };
 

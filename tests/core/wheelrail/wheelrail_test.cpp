@@ -44,6 +44,24 @@ TEST(WheelRail, PoseFarOffTheRailIsBadInput) {
   EXPECT_THROW(SolveWheelRail(c), InputError);
 }
 
+// A wheel sunk millimetres into the rail is a pose or placement error, reported at once: left
+// alone it would produce meganewton forces on grids of tens of thousands of contact elements
+// whose tangential solve takes minutes.
+TEST(WheelRail, WheelSunkIntoTheRailIsBadInput) {
+  Case c = Manchester(0.0, ReferenceSurface::kCurved);
+  c.state.fz.reset();
+  c.state.z = 5.0;
+  try {
+    SolveWheelRail(c);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sinks"), std::string::npos) << e.what();
+  }
+  c.state.z.reset();
+  c.state.fz = 1e10;  // unreachable within elastic contact
+  EXPECT_THROW(SolveWheelRail(c), InputError);
+}
+
 // Mirror symmetry: a left wheel at −y, −yaw equals the right wheel at +y, +yaw mirrored (the
 // same profiles serve both sides, as in CONTACT).
 TEST(WheelRail, LeftSideMirrorsRightSide) {
