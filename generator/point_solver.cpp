@@ -1,0 +1,134 @@
+// One grid point: solve, classify, pick the scene's outputs.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <limits>
+
+#include "wrc/generator.h"
+
+namespace wrc {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+PointStatus StatusOf(SolverStatus status) {
+  switch (status) {
+    case SolverStatus::kConverged:
+      return PointStatus::kOk;
+    case SolverStatus::kNoContact:
+      return PointStatus::kNoContact;
+    case SolverStatus::kNotConverged:
+      return PointStatus::kNotConverged;
+  }
+  return PointStatus::kError;
+}
+
+// The patch carrying the largest normal force (the first of equals: deterministic).
+const PatchResult* MainPatch(const WheelRailResult& result) {
+  const PatchResult* main = nullptr;
+  for (const PatchResult& patch : result.patches) {
+    if (main == nullptr || patch.fn > main->fn) main = &patch;
+  }
+  return main;
+}
+
+double OutputValue(const std::string& name, const WheelRailResult& r) {
+  if (name == "fx") return r.force_T(0);
+  if (name == "fy") return r.force_T(1);
+  if (name == "fz") return r.force_T(2);
+  if (name == "mx") return r.moment_T(0);
+  if (name == "my") return r.moment_T(1);
+  if (name == "mz") return r.moment_T(2);
+  if (name == "fx_ws") return r.force_W(0);
+  if (name == "fy_ws") return r.force_W(1);
+  if (name == "fz_ws") return r.force_W(2);
+  if (name == "n_patches") return static_cast<double>(r.patches.size());
+  if (name == "z") return r.z;
+  if (name == "pmax") {
+    double pmax = 0.0;
+    for (const PatchResult& patch : r.patches) pmax = std::max(pmax, patch.pmax);
+    return pmax;
+  }
+  if (name == "contact_y" || name == "contact_angle") {
+    const bool want_y = name == "contact_y";
+    if (r.has_force_location) return want_y ? r.contact_y : r.contact_angle;
+    // The resultant's line of action missed the rail profile (rare: nearly horizontal force);
+    // the main patch's reference is the closest stand-in and keeps the table finite.
+    const PatchResult* main = MainPatch(r);
+    if (main == nullptr) return kNaN;
+    return want_y ? main->reference_rail(0) : main->contact_angle;
+  }
+  return kNaN;  // unreachable: the scene parser admits only the names above
+}
+
+}  // namespace
+
+const char* ToString(PointStatus status) {
+  switch (status) {
+    case PointStatus::kOk:
+      return "ok";
+    case PointStatus::kNoContact:
+      return "no_contact";
+    case PointStatus::kNotConverged:
+      return "not_converged";
+    case PointStatus::kError:
+      return "error";
+  }
+  return "error";
+}
+
+std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult& result,
+                                      PointStatus status) {
+  std::vector<double> values(scene.outputs.size(), kNaN);
+  if (status == PointStatus::kNotConverged || status == PointStatus::kError) return values;
+  for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
+    const std::string& name = scene.outputs[k];
+    if (status == PointStatus::kNoContact) {
+      // No contact, no force; a contact location does not exist. z (prescribed fz) or fz
+      // (prescribed z) are what the solver reports.
+      const bool location = name == "contact_y" || name == "contact_angle";
+      values[k] = location ? kNaN : (name == "z" || name == "fz" ? OutputValue(name, result) : 0.0);
+    } else {
+      values[k] = OutputValue(name, result);
+    }
+  }
+  return values;
+}
+
+PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
+                            double z_guess) {
+  PointResult point;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    Case c = CaseAtIndex(scene, indices);
+    // Messages name the scene by its file name only, so that they (and so the table) do not
+    // depend on the directory a run or a resumed run was started from.
+    c.source_name = std::filesystem::path(c.source_name).filename().string();
+    WheelRailOptions options;
+    options.z_guess = z_guess;
+    const WheelRailResult result = SolveWheelRail(c, options);
+    point.status = StatusOf(result.status);
+    point.values = SceneOutputValues(scene, result, point.status);
+    if (point.status == PointStatus::kOk) point.z = result.z;
+    if (point.status == PointStatus::kNotConverged) {
+      point.message =
+          result.message.empty() ? "the solver reached its iteration limit" : result.message;
+    }
+  } catch (const std::exception& e) {
+    point.status = PointStatus::kError;
+    point.values.assign(scene.outputs.size(), kNaN);
+    point.message = e.what();
+  } catch (...) {
+    point.status = PointStatus::kError;
+    point.values.assign(scene.outputs.size(), kNaN);
+    point.message = "unknown exception";
+  }
+  point.solve_time_s =
+      std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+  return point;
+}
+
+}  // namespace wrc

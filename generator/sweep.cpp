@@ -1,0 +1,248 @@
+#include "generator/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "generator/interrupt.h"
+
+namespace wrc::gen {
+
+SegmentLayout::SegmentLayout(std::vector<std::size_t> shape, std::size_t min_segments)
+    : shape_(std::move(shape)) {
+  if (shape_.empty()) throw std::invalid_argument("SegmentLayout: a grid needs at least one axis");
+  line_count_ = 1;
+  for (std::size_t a = 0; a + 1 < shape_.size(); ++a) line_count_ *= shape_[a];
+  const std::size_t length = shape_.back();
+  segment_length_ = length;
+  if (line_count_ < min_segments) {
+    segment_length_ = std::max<std::size_t>(1, length * line_count_ / min_segments);
+    segment_length_ = std::min(segment_length_, length);
+  }
+  segments_per_line_ = (length + segment_length_ - 1) / segment_length_;
+}
+
+std::uint64_t SegmentLayout::SegmentFirstPoint(std::uint64_t segment) const {
+  const std::uint64_t line = segment / segments_per_line_;
+  const std::uint64_t part = segment % segments_per_line_;
+  return line * shape_.back() + part * segment_length_;
+}
+
+std::size_t SegmentLayout::SegmentSize(std::uint64_t segment) const {
+  const std::size_t start =
+      static_cast<std::size_t>(segment % segments_per_line_) * segment_length_;
+  return std::min(segment_length_, shape_.back() - start);
+}
+
+std::vector<std::size_t> SegmentLayout::Indices(std::uint64_t point) const {
+  std::vector<std::size_t> indices(shape_.size());
+  for (std::size_t a = shape_.size(); a-- > 0;) {
+    indices[a] = static_cast<std::size_t>(point % shape_[a]);
+    point /= shape_[a];
+  }
+  return indices;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Task encoding: u32 count, then per task u64 segment, u32 n, n done bytes, n × f64 z.
+
+namespace {
+
+void Put(std::string& out, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+
+std::uint64_t Get(const std::string& in, std::size_t& offset, int bytes) {
+  if (offset + static_cast<std::size_t>(bytes) > in.size()) {
+    throw std::runtime_error("malformed task message (truncated)");
+  }
+  std::uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) {
+    v |= static_cast<std::uint64_t>(static_cast<unsigned char>(in[offset + i])) << (8 * i);
+  }
+  offset += static_cast<std::size_t>(bytes);
+  return v;
+}
+
+}  // namespace
+
+std::string EncodeTasks(const std::vector<SegmentTask>& tasks) {
+  std::string out;
+  Put(out, tasks.size(), 4);
+  for (const SegmentTask& task : tasks) {
+    Put(out, task.segment, 8);
+    Put(out, task.done.size(), 4);
+    for (const std::uint8_t d : task.done) Put(out, d, 1);
+    for (std::size_t k = 0; k < task.done.size(); ++k) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &task.known_z[k], sizeof bits);
+      Put(out, bits, 8);
+    }
+  }
+  return out;
+}
+
+std::vector<SegmentTask> DecodeTasks(const std::string& bytes) {
+  std::size_t offset = 0;
+  const std::uint64_t count = Get(bytes, offset, 4);
+  std::vector<SegmentTask> tasks;
+  for (std::uint64_t t = 0; t < count; ++t) {
+    SegmentTask task;
+    task.segment = Get(bytes, offset, 8);
+    const std::uint64_t n = Get(bytes, offset, 4);
+    if (n > bytes.size()) throw std::runtime_error("malformed task message (length)");
+    task.done.resize(static_cast<std::size_t>(n));
+    task.known_z.resize(static_cast<std::size_t>(n));
+    for (std::uint8_t& d : task.done) d = static_cast<std::uint8_t>(Get(bytes, offset, 1));
+    for (double& z : task.known_z) {
+      const std::uint64_t bits = Get(bytes, offset, 8);
+      std::memcpy(&z, &bits, sizeof z);
+    }
+    tasks.push_back(std::move(task));
+  }
+  if (offset != bytes.size()) throw std::runtime_error("malformed task message (trailing bytes)");
+  return tasks;
+}
+
+// ---------------------------------------------------------------------------------------------
+// StopControl, task sources
+
+bool StopControl::ShouldStop() {
+  if (stop_.load()) return true;
+  if ((cancel_ != nullptr && cancel_->load()) || (watch_signals_ && InterruptRequested())) {
+    stop_.store(true);
+    return true;
+  }
+  return false;
+}
+
+bool StopControl::ClaimPoint() {
+  if (ShouldStop()) return false;
+  if (max_points_ > 0 && claimed_.fetch_add(1) >= max_points_) {
+    stop_.store(true);
+    return false;
+  }
+  return true;
+}
+
+std::optional<SegmentTask> TaskQueue::Next() {
+  std::vector<SegmentTask> one = Take(1);
+  if (one.empty()) return std::nullopt;
+  return std::move(one.front());
+}
+
+std::vector<SegmentTask> TaskQueue::Take(std::size_t n) {
+  std::vector<SegmentTask> taken;
+  if (stop_.ShouldStop()) return taken;
+  std::lock_guard<std::mutex> lock(mutex_);
+  while (taken.size() < n && next_ < tasks_.size()) taken.push_back(std::move(tasks_[next_++]));
+  return taken;
+}
+
+std::optional<SegmentTask> TaskInbox::Next() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ++waiting_;
+  // Re-check the stop condition now and then: a signal cannot notify a condition variable.
+  while (tasks_.empty() && !closed_ && !stop_.ShouldStop()) {
+    changed_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  --waiting_;
+  if (tasks_.empty() || stop_.ShouldStop()) return std::nullopt;
+  SegmentTask task = std::move(tasks_.front());
+  tasks_.pop_front();
+  return task;
+}
+
+void TaskInbox::Add(std::vector<SegmentTask> tasks) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (tasks.empty()) closed_ = true;
+    for (SegmentTask& task : tasks) tasks_.push_back(std::move(task));
+  }
+  changed_.notify_all();
+}
+
+void TaskInbox::WakeAll() { changed_.notify_all(); }
+
+std::size_t TaskInbox::Queued() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return tasks_.size();
+}
+
+std::size_t TaskInbox::Waiting() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return waiting_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// WorkerPool
+
+WorkerPool::WorkerPool(const Scene& scene, const SegmentLayout& layout, int threads,
+                       bool warm_start, TaskSource& source, PointSink& sink, StopControl& stop)
+    : scene_(scene),
+      layout_(layout),
+      warm_start_(warm_start),
+      source_(source),
+      sink_(sink),
+      stop_(stop) {
+  running_.store(threads);
+  for (int t = 0; t < threads; ++t) threads_.emplace_back([this] { Work(); });
+}
+
+WorkerPool::~WorkerPool() {
+  // Only reached with workers running when the owner is unwinding from an exception.
+  if (!Finished()) stop_.RequestStop();
+  Join();
+}
+
+void WorkerPool::Join() {
+  for (std::thread& thread : threads_) {
+    if (thread.joinable()) thread.join();
+  }
+}
+
+void WorkerPool::RethrowIfFailed() {
+  std::lock_guard<std::mutex> lock(failure_mutex_);
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+void WorkerPool::Work() {
+  try {
+    while (!stop_.ShouldStop()) {
+      std::optional<SegmentTask> task = source_.Next();
+      if (!task) break;
+      SolveSegment(*task);
+    }
+  } catch (...) {
+    {
+      std::lock_guard<std::mutex> lock(failure_mutex_);
+      if (!failure_) failure_ = std::current_exception();
+    }
+    stop_.RequestStop();
+  }
+  running_.fetch_sub(1);
+}
+
+void WorkerPool::SolveSegment(const SegmentTask& task) {
+  const std::uint64_t first = layout_.SegmentFirstPoint(task.segment);
+  const std::size_t size = layout_.SegmentSize(task.segment);
+  // Warm start: z of the previous point of this segment when it solved fine, else a cold start.
+  double previous_z = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < size; ++k) {
+    if (!task.done.empty() && task.done[k] != 0) {
+      previous_z = task.known_z[k];
+      continue;
+    }
+    if (!stop_.ClaimPoint()) return;
+    const std::uint64_t point = first + k;
+    PointResult result =
+        SolveScenePoint(scene_, layout_.Indices(point),
+                        warm_start_ ? previous_z : std::numeric_limits<double>::quiet_NaN());
+    previous_z = result.z;
+    sink_.Accept(point, std::move(result));
+  }
+}
+
+}  // namespace wrc::gen

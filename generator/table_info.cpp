@@ -1,0 +1,142 @@
+// ReadTableInfo(): what `wrc info` shows, read with the checked HDF5 wrappers. Deliberately
+// lenient about extensions and strict about what SPEC §4.2 requires.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "runtime/hdf5/hdf5.h"
+#include "wrc/errors.h"
+#include "wrc/generator.h"
+
+namespace wrc {
+namespace {
+
+std::string OptionalString(const h5::Object& object, const std::string& name) {
+  if (!object.HasAttribute(name)) return {};
+  const h5::Attribute attribute = object.OpenAttribute(name);
+  if (attribute.Type().Class() != h5::TypeClass::kString) return {};
+  return attribute.ReadString();
+}
+
+TableInfo ReadInfo(const std::filesystem::path& path) {
+  const auto lock = h5::LibraryLock();
+  const h5::File file = h5::File::Open(path.string());
+  TableInfo info;
+  if (!file.HasAttribute("format")) {
+    throw InputError(path.string() + ": not a wrc table (no 'format' attribute)");
+  }
+  info.format = file.ReadStringAttribute("format");
+  if (info.format != "wrc-table") {
+    throw InputError(path.string() + ": not a wrc table (format is \"" + info.format + "\")");
+  }
+  info.format_version =
+      file.HasAttribute("format_version") ? file.ReadIntAttribute("format_version") : 0;
+  for (const std::string& name : file.AttributeNames()) {
+    if (name == "format") continue;
+    const h5::Attribute attribute = file.OpenAttribute(name);
+    if (attribute.Type().Class() == h5::TypeClass::kString) {
+      info.attributes.emplace_back(name, attribute.ReadString());
+    }
+  }
+
+  const h5::Group axes = file.OpenGroup("axes");
+  std::vector<h5::Size> shape;
+  for (const std::string& name : axes.ReadStringArrayAttribute("order")) {
+    const h5::Dataset dataset = axes.OpenDataset(name);
+    info.axes.push_back({name, OptionalString(dataset, "unit"), dataset.Read<double>()});
+    shape.push_back(info.axes.back().values.size());
+  }
+  info.points = 1;
+  for (const h5::Size n : shape) info.points *= static_cast<std::size_t>(n);
+
+  const h5::Dataset status_dataset = file.OpenDataset("status");
+  if (status_dataset.Shape() != shape) {
+    throw InputError(path.string() + ":/status: its shape does not match the axes");
+  }
+  const std::vector<std::int8_t> status = status_dataset.Read<std::int8_t>();
+  for (const std::int8_t s : status) {
+    if (s >= 0 && s < kPointStatusCount) {
+      ++info.status_counts[s];
+    } else {
+      ++info.other_status;
+    }
+  }
+
+  const h5::Group outputs = file.OpenGroup("outputs");
+  const std::vector<std::string> output_names = outputs.HasAttribute("order")
+                                                    ? outputs.ReadStringArrayAttribute("order")
+                                                    : outputs.MemberNames();
+  for (const std::string& name : output_names) {
+    const h5::Dataset dataset = outputs.OpenDataset(name);
+    if (dataset.Shape() != shape) {
+      throw InputError(path.string() + ":/outputs/" + name + ": its shape does not match the axes");
+    }
+    TableInfo::Output output{name, OptionalString(dataset, "unit")};
+    const std::vector<double> values = dataset.Read<double>();
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (status[i] != 0 || !std::isfinite(values[i])) continue;
+      low = std::min(low, values[i]);
+      high = std::max(high, values[i]);
+    }
+    if (low <= high) {
+      output.min = low;
+      output.max = high;
+    }
+    info.outputs.push_back(output);
+  }
+
+  if (file.Kind("solve_time_s") == h5::LinkKind::kDataset) {
+    for (const float t : file.OpenDataset("solve_time_s").Read<float>()) {
+      info.solve_time_total_s += t;
+      info.solve_time_max_s = std::max(info.solve_time_max_s, static_cast<double>(t));
+    }
+  }
+
+  if (file.Kind("profiles") == h5::LinkKind::kGroup) {
+    const h5::Group profiles = file.OpenGroup("profiles");
+    for (auto [name, out_name, out_bytes] :
+         {std::tuple{"rail", &info.rail_profile_name, &info.rail_profile_bytes},
+          std::tuple{"wheel", &info.wheel_profile_name, &info.wheel_profile_bytes}}) {
+      if (profiles.Kind(name) != h5::LinkKind::kDataset) continue;
+      const h5::Dataset dataset = profiles.OpenDataset(name);
+      *out_name = OptionalString(dataset, "name");
+      *out_bytes = static_cast<std::size_t>(dataset.NumElements());
+    }
+  }
+
+  if (file.Kind("errors") == h5::LinkKind::kGroup) {
+    const h5::Group errors = file.OpenGroup("errors");
+    const std::vector<std::int64_t> points = errors.OpenDataset("point").Read<std::int64_t>();
+    const std::vector<std::string> messages = errors.OpenDataset("message").ReadStrings();
+    for (std::size_t i = 0; i < points.size() && i < messages.size(); ++i) {
+      TableInfo::Failure failure;
+      failure.index = static_cast<std::uint64_t>(points[i]);
+      std::uint64_t rest = failure.index;
+      failure.indices.resize(shape.size());
+      for (std::size_t a = shape.size(); a-- > 0;) {
+        failure.indices[a] = static_cast<std::size_t>(rest % shape[a]);
+        rest /= shape[a];
+      }
+      failure.message = messages[i];
+      info.failures.push_back(std::move(failure));
+    }
+  }
+  return info;
+}
+
+}  // namespace
+
+TableInfo ReadTableInfo(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path.string() + ": no such file");
+  try {
+    return ReadInfo(path);
+  } catch (const h5::Error& error) {
+    // An HDF5 failure here means a damaged or foreign file: the user's input, not a bug.
+    throw InputError(std::string("not a readable wrc table: ") + error.what());
+  }
+}
+
+}  // namespace wrc

@@ -1,0 +1,130 @@
+// The HDF5 table (SPEC §4.2), written through the checked wrc::h5 wrappers.
+
+#include <ctime>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+
+#include "generator/table_data.h"
+#include "runtime/hdf5/hdf5.h"
+#include "wrc/errors.h"
+
+namespace wrc::gen {
+namespace {
+
+std::vector<std::uint8_t> FileBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot read the profile to store it in the table");
+  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in),
+                                   std::istreambuf_iterator<char>());
+}
+
+void WriteProfile(h5::Group& group, const std::string& name, const std::filesystem::path& path) {
+  std::vector<std::uint8_t> bytes = FileBytes(path);
+  // HDF5 chunks need a non-empty dataset; an empty profile file could not be solved anyway.
+  if (bytes.empty()) throw InputError(path.string() + ": the profile file is empty");
+  h5::Dataset dataset =
+      group.WriteDataset<std::uint8_t>(name, {bytes.size()}, bytes, h5::CompressedChecked());
+  dataset.WriteStringAttribute("name", path.filename().string());
+}
+
+}  // namespace
+
+TableData::TableData(std::size_t points, std::size_t outputs)
+    : values(outputs, std::vector<double>(points, std::numeric_limits<double>::quiet_NaN())),
+      status(points, -1),
+      solve_time_s(points, 0.0f),
+      z(points, std::numeric_limits<double>::quiet_NaN()) {}
+
+bool TableData::Store(std::uint64_t point, const PointResult& result) {
+  if (point >= status.size()) throw std::out_of_range("TableData::Store: point index");
+  if (status[point] >= 0) return false;
+  if (result.values.size() != values.size()) {
+    throw std::invalid_argument("TableData::Store: wrong number of output values");
+  }
+  for (std::size_t k = 0; k < values.size(); ++k) values[k][point] = result.values[k];
+  status[point] = static_cast<std::int8_t>(result.status);
+  solve_time_s[point] = result.solve_time_s;
+  z[point] = result.z;
+  if (result.status == PointStatus::kNotConverged || result.status == PointStatus::kError) {
+    messages[point] = result.message;
+  }
+  ++finished;
+  return true;
+}
+
+std::string IsoTimestampUtc() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const TableData& data,
+                    const TableProvenance& provenance) {
+  if (data.finished != data.status.size()) {
+    throw std::logic_error("WriteTableFile: the table has unfinished points");
+  }
+  const auto lock = h5::LibraryLock();
+  h5::File file = h5::File::Create(path.string(), /*overwrite=*/true);
+  file.WriteStringAttribute("format", "wrc-table");
+  file.WriteIntAttribute("format_version", 1);
+  file.WriteStringAttribute("wrc_version", GeneratorVersion());
+  file.WriteStringAttribute("created", provenance.created);
+  file.WriteStringAttribute("scene", scene.base.source_text);
+  file.WriteStringAttribute("rail_profile_sha256", provenance.rail_sha256);
+  file.WriteStringAttribute("wheel_profile_sha256", provenance.wheel_sha256);
+  // Extension: how z was started at each prescribed-fz point (results differ in the last bits).
+  file.WriteStringAttribute("z_warm_start", provenance.z_warm_start);
+
+  const h5::DatasetOptions storage = h5::CompressedChecked();
+  std::vector<h5::Size> shape;
+  for (const std::size_t n : scene.Shape()) shape.push_back(n);
+
+  h5::Group axes = file.CreateGroup("axes");
+  std::vector<std::string> axis_names;
+  for (const SceneAxis& axis : scene.axes) {
+    h5::Dataset dataset =
+        axes.WriteDataset<double>(axis.name, {axis.values.size()}, axis.values, storage);
+    dataset.WriteStringAttribute("unit", std::string(SceneQuantityUnit(axis.name)));
+    axis_names.push_back(axis.name);
+  }
+  axes.WriteStringArrayAttribute("order", axis_names);
+
+  h5::Group outputs = file.CreateGroup("outputs");
+  for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
+    const std::string& name = scene.outputs[k];
+    h5::Dataset dataset = outputs.WriteDataset<double>(name, shape, data.values[k], storage);
+    dataset.WriteStringAttribute("unit", std::string(SceneQuantityUnit(name)));
+  }
+  outputs.WriteStringArrayAttribute("order", scene.outputs);
+
+  file.WriteDataset<std::int8_t>("status", shape, data.status, storage)
+      .WriteStringAttribute("meaning", "0 ok, 1 no contact, 2 not converged, 3 error");
+  file.WriteDataset<float>("solve_time_s", shape, data.solve_time_s, storage)
+      .WriteStringAttribute("unit", "s");
+
+  h5::Group profiles = file.CreateGroup("profiles");
+  WriteProfile(profiles, "rail", scene.base.rail.path);
+  WriteProfile(profiles, "wheel", scene.base.wheel.path);
+
+  // Extension: why points failed, so users need not re-run them to find out.
+  if (!data.messages.empty()) {
+    h5::Group errors = file.CreateGroup("errors");
+    std::vector<std::int64_t> points;
+    std::vector<std::string> messages;
+    for (const auto& [point, message] : data.messages) {
+      points.push_back(static_cast<std::int64_t>(point));
+      messages.push_back(message);
+    }
+    errors.WriteDataset<std::int64_t>("point", {points.size()}, points, storage)
+        .WriteStringAttribute("meaning", "flat row-major index into the grid");
+    errors.WriteStringDataset("message", messages, storage);
+  }
+  file.Flush();
+}
+
+}  // namespace wrc::gen

@@ -1,0 +1,208 @@
+#pragma once
+/// @file generator.h
+/// `wrc generate` (SPEC §4.2): solves a scene at every grid point and writes the HDF5 table.
+///
+/// The sweep is split into *lines*: all points along the last axis for fixed other indices
+/// (cut into shorter segments when a table has few lines, see GenerateOptions::min_segments).
+/// A segment is solved in order by one worker, each point warm-started from the wheelset height
+/// of the previous point of the segment; segments go to worker threads (and MPI ranks)
+/// dynamically. Because a point's result depends only on its own case, on its predecessor and
+/// on the scene's shape, tables are bit-identical whatever the number of threads or ranks, and
+/// whether or not the run was interrupted and resumed.
+///
+/// Every finished point is appended to a journal next to the output (`TABLE.h5.journal`) at
+/// once and flushed to disk every second, so an interrupted run loses at most the points in
+/// flight (Ctrl-C, kill -9) or the last second of them (a machine that loses power); the table
+/// itself is written at the end to `TABLE.h5.tmp` and renamed into place.
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "wrc/errors.h"
+#include "wrc/scene.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc {
+
+/// Outcome of one grid point, as stored in the table's /status dataset.
+enum class PointStatus : std::int8_t {
+  kOk = 0,            ///< Solved; all outputs hold numbers.
+  kNoContact = 1,     ///< Wheel and rail do not touch: forces 0, locations NaN.
+  kNotConverged = 2,  ///< A solver hit its iteration limit: outputs NaN, message in /errors.
+  kError = 3,         ///< The solve threw (bad pose, ...): outputs NaN, message in /errors.
+};
+
+/// Number of PointStatus values.
+inline constexpr int kPointStatusCount = 4;
+
+/// "ok", "no_contact", "not_converged" or "error", as `wrc solve` names them.
+const char* ToString(PointStatus status);
+
+/// One solved grid point: what the table and the journal store of it.
+struct PointResult {
+  PointStatus status = PointStatus::kError;
+  /// Wall time of the solve, s.
+  float solve_time_s = 0.0f;
+  /// The wheelset height of the solution (the warm start of the next point of its line); NaN
+  /// unless status is kOk.
+  double z = std::numeric_limits<double>::quiet_NaN();
+  /// One value per scene output, in scene.outputs order.
+  std::vector<double> values;
+  /// Why the point failed (status kNotConverged or kError); empty otherwise.
+  std::string message;
+};
+
+/// The stored outputs of a solve, in scene.outputs order (SPEC §4.2):
+///  - fx fy fz mx my mz: force on the rail in the track frame, moments about the rail origin;
+///  - fx_ws fy_ws fz_ws: the same force in the wheelset frame;
+///  - n_patches; pmax: the largest peak pressure over the patches; z: the wheelset height;
+///  - contact_y, contact_angle: where the force resultant meets the rail (paper Eq. 25–27); if
+///    that location cannot be found, the reference of the patch carrying the largest normal
+///    force stands in for it.
+/// For kNoContact: forces, moments, n_patches and pmax are 0, contact_y and contact_angle NaN.
+/// For kNotConverged and kError every value is NaN.
+std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult& result,
+                                      PointStatus status);
+
+/// Solves the grid point at `indices` (one per axis) exactly as `wrc generate` does: z_guess
+/// warm-starts a prescribed-fz solve (NaN: cold start), exceptions become kError.
+PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
+                            double z_guess = std::numeric_limits<double>::quiet_NaN());
+
+/// When progress is shown on stderr.
+enum class ProgressMode {
+  kAuto,   ///< A bar redrawn in place on a terminal, otherwise a line every ~5 s.
+  kBar,    ///< Always the bar.
+  kLines,  ///< Always plain lines.
+  kOff,    ///< Nothing (--quiet).
+};
+
+/// Whether to split the work across MPI ranks.
+enum class MpiMode {
+  kAuto,  ///< Join MPI when launched by mpirun/mpiexec with more than one rank.
+  kOff,   ///< Never, even under mpirun (each process would then run the whole table).
+};
+
+/// Options of GenerateTable().
+struct GenerateOptions {
+  /// The table to write (TABLE.h5). The journal is TABLE.h5.journal, the temporary file
+  /// TABLE.h5.tmp. An existing table is replaced (atomically) when the run completes.
+  std::filesystem::path output;
+  /// Worker threads per process; 0: std::thread::hardware_concurrency(), shared out among the
+  /// MPI ranks running on the same machine.
+  int threads = 0;
+  /// Continue from the journal of an interrupted run. Without it, an existing journal is an
+  /// error (InputError) so that no work is thrown away by accident.
+  bool resume = false;
+  ProgressMode progress = ProgressMode::kAuto;
+  /// Warm-start each prescribed-fz point from its predecessor's z in the segment (measured to
+  /// save about 15 % of the fz iterations and 3–4 % of the time on tables/mbench.toml). Changes the
+  /// last bits of the results, so a journal records it and a resume must use the same setting.
+  bool warm_start = true;
+  /// Lines are the units of work when the table has at least this many of them; otherwise
+  /// they are cut into runs of equal length so that there are about this many units, each
+  /// warm-start chain restarting cold. Keeps all cores busy on tables with few lines (a 1-D
+  /// sweep is a single line). Part of what a journal records, like warm_start.
+  std::size_t min_segments = 64;
+  /// Install SIGINT/SIGTERM handlers for the duration of the run: the first signal stops the
+  /// run cleanly (finished points stay in the journal), a second one kills the process.
+  bool handle_signals = false;
+  /// Stop as if interrupted as soon as this becomes true (may be null).
+  const std::atomic<bool>* cancel = nullptr;
+  /// Stop as if interrupted after solving this many points in this run; 0: no limit.
+  /// Deterministic interruption for tests.
+  std::size_t max_points = 0;
+  MpiMode mpi = MpiMode::kAuto;
+};
+
+/// What a GenerateTable() run did.
+struct GenerateSummary {
+  std::size_t points = 0;    ///< Grid points of the scene.
+  std::size_t reused = 0;    ///< Taken over from the journal (--resume).
+  std::size_t computed = 0;  ///< Solved in this run (by all ranks).
+  /// Finished points by PointStatus (index = status value).
+  std::size_t status_counts[kPointStatusCount] = {0, 0, 0, 0};
+  /// True when the table was written; false when the run stopped early (interrupted,
+  /// cancelled, max_points, a rank that stopped): the journal then holds the finished points.
+  bool complete = false;
+  bool interrupted = false;  ///< Stopped by a signal, cancel or max_points.
+  double seconds = 0.0;      ///< Wall time of the run.
+  int threads = 0;           ///< Worker threads of this process.
+  int ranks = 1;             ///< MPI ranks that took part (1 without MPI).
+  /// False on MPI ranks other than 0: those neither write nor report, the caller stays quiet.
+  bool is_root = true;
+  /// Up to 10 failed points (flat row-major index and message), in index order.
+  std::vector<std::pair<std::uint64_t, std::string>> failures;
+  std::filesystem::path journal;  ///< The journal file used.
+};
+
+/// Thrown by GenerateTable() on MPI ranks other than 0 when rank 0 refused to start the run;
+/// rank 0 reports the reason, the other ranks should exit quietly with the same exit code.
+class GenerateAborted : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+/// Generates the table of `scene` (loaded with LoadScene, so profile paths are resolved).
+/// Throws InputError for problems the user must fix (an existing journal without resume, a
+/// journal of another scene, unreadable profiles, an unwritable output) and std::runtime_error
+/// (h5::Error) when writing the table fails. Failing points do not throw: they are recorded
+/// with their status and message.
+GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options);
+
+/// True when this build can split work across MPI ranks.
+bool GeneratorSupportsMpi();
+
+/// SHA-256 of bytes, as 64 lowercase hex digits.
+std::string Sha256Hex(std::string_view bytes);
+
+/// SHA-256 of a file's bytes; throws InputError when the file cannot be read.
+std::string Sha256FileHex(const std::filesystem::path& path);
+
+/// The version string stored in tables (`wrc_version`).
+const char* GeneratorVersion();
+
+/// What `wrc info` shows about a table file.
+struct TableInfo {
+  struct Axis {
+    std::string name, unit;
+    std::vector<double> values;
+  };
+  struct Output {
+    std::string name, unit;
+    /// Range over the points whose status is ok (NaN when there are none).
+    double min = std::numeric_limits<double>::quiet_NaN();
+    double max = std::numeric_limits<double>::quiet_NaN();
+  };
+  struct Failure {
+    std::uint64_t index = 0;           ///< Flat row-major point index.
+    std::vector<std::size_t> indices;  ///< One per axis.
+    std::string message;
+  };
+  std::string format;
+  std::int64_t format_version = 0;
+  /// Root string attributes (wrc_version, created, scene, profile hashes, ...), by name.
+  std::vector<std::pair<std::string, std::string>> attributes;
+  std::vector<Axis> axes;
+  std::vector<Output> outputs;
+  std::size_t points = 0;
+  std::size_t status_counts[kPointStatusCount] = {0, 0, 0, 0};
+  std::size_t other_status = 0;  ///< Status values outside 0..3 (a damaged file).
+  double solve_time_total_s = 0.0, solve_time_max_s = 0.0;
+  std::vector<Failure> failures;  ///< From /errors (an extension; empty in other writers' files).
+  std::string rail_profile_name, wheel_profile_name;
+  std::size_t rail_profile_bytes = 0, wheel_profile_bytes = 0;
+};
+
+/// Reads a table's layout, status counts and provenance. Throws InputError when the file is not
+/// a readable wrc table.
+TableInfo ReadTableInfo(const std::filesystem::path& path);
+
+}  // namespace wrc

@@ -1,0 +1,133 @@
+// `wrc generate SCENE.toml -o TABLE.h5 [--threads N] [--resume] [--quiet]` (SPEC §4.2).
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "tools/wrc/commands.h"
+#include "wrc/errors.h"
+#include "wrc/generator.h"
+#include "wrc/scene.h"
+
+namespace wrc::cli {
+namespace {
+
+// 128 + SIGINT, what shells report for a program stopped by Ctrl-C.
+constexpr int kExitInterrupted = 130;
+
+// One shell word, so that the printed resume command can be pasted as is.
+std::string ShellWord(const std::string& word) {
+  if (word.find_first_of(" \t\n'\"\\$`*?[]{}()<>|&;#~!") == std::string::npos && !word.empty()) {
+    return word;
+  }
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// "(y = 200, yaw = 0.01)" for a flat point index.
+std::string DescribePoint(const Scene& scene, std::uint64_t point) {
+  const std::vector<std::size_t> shape = scene.Shape();
+  std::vector<std::size_t> indices(shape.size());
+  for (std::size_t a = shape.size(); a-- > 0;) {
+    indices[a] = static_cast<std::size_t>(point % shape[a]);
+    point /= shape[a];
+  }
+  std::ostringstream text;
+  text << '(';
+  for (std::size_t a = 0; a < shape.size(); ++a) {
+    text << (a ? ", " : "") << scene.axes[a].name << " = " << scene.axes[a].values[indices[a]];
+  }
+  text << ')';
+  return text.str();
+}
+
+void PrintSummary(const Scene& scene, const std::string& output, const GenerateSummary& s) {
+  const auto& counts = s.status_counts;
+  std::cout << "wrote " << output << ": " << s.points << " points (" << counts[0] << " ok, "
+            << counts[1] << " no contact, " << counts[2] << " not converged, " << counts[3]
+            << " errors)\n";
+  std::cout << "solved " << s.computed << " points in " << std::fixed << std::setprecision(1)
+            << s.seconds << " s";
+  if (s.computed > 0 && s.seconds > 0.0) {
+    std::cout << " (" << std::setprecision(2) << static_cast<double>(s.computed) / s.seconds
+              << " points/s)";
+  }
+  std::cout << " on " << s.threads << (s.threads == 1 ? " thread" : " threads");
+  if (s.ranks > 1) std::cout << " per rank, " << s.ranks << " MPI ranks";
+  if (s.reused > 0) std::cout << "; " << s.reused << " points reused from the journal";
+  std::cout << '\n' << std::defaultfloat;
+  if (!s.failures.empty()) {
+    std::cerr << "wrc generate: " << counts[2] + counts[3]
+              << " points failed (status 2/3, outputs NaN); the first:\n";
+    for (const auto& [point, message] : s.failures) {
+      std::cerr << "  point " << point << " " << DescribePoint(scene, point) << ": " << message
+                << '\n';
+    }
+    std::cerr << "  (all of them: wrc info " << ShellWord(output) << ")\n";
+  }
+}
+
+}  // namespace
+
+void AddGenerateCommand(CLI::App& app, int* exit_code) {
+  auto* cmd =
+      app.add_subcommand("generate", "Solve a scene at every grid point into an HDF5 table");
+  auto scene_path = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto threads = std::make_shared<int>(0);
+  auto resume = std::make_shared<bool>(false);
+  auto quiet = std::make_shared<bool>(false);
+  auto cold_start = std::make_shared<bool>(false);
+  cmd->add_option("SCENE", *scene_path, "Scene file (TOML, SPEC §4.1)")->required();
+  cmd->add_option("-o,--output", *output, "Table to write (HDF5)")->required();
+  cmd->add_option("--threads", *threads,
+                  "Worker threads (default: all cores, shared among MPI ranks on one machine)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_flag("--resume", *resume,
+                "Continue an interrupted run from TABLE.h5.journal, reusing its points");
+  cmd->add_flag("--quiet", *quiet, "No progress on stderr");
+  cmd->add_flag("--no-warm-start", *cold_start,
+                "Start every prescribed-fz solve from first contact instead of from the previous "
+                "point's z (slower; results differ in the last digits)");
+  cmd->callback([=]() {
+    try {
+      const Scene scene = LoadScene(*scene_path);
+      GenerateOptions options;
+      options.output = *output;
+      options.threads = *threads;
+      options.resume = *resume;
+      options.progress = *quiet ? ProgressMode::kOff : ProgressMode::kAuto;
+      options.handle_signals = true;
+      options.warm_start = !*cold_start;
+      const GenerateSummary summary = GenerateTable(scene, options);
+      if (!summary.is_root) {
+        *exit_code = summary.interrupted ? kExitInterrupted : kExitOk;
+        return;
+      }
+      if (summary.complete) {
+        PrintSummary(scene, *output, summary);
+        *exit_code = kExitOk;
+        return;
+      }
+      const std::size_t saved = summary.reused + summary.computed;
+      std::cerr << "wrc generate: interrupted; " << saved << " of " << summary.points
+                << " points are saved in " << summary.journal.string()
+                << ".\nContinue with:\n  wrc generate " << ShellWord(*scene_path) << " -o "
+                << ShellWord(*output);
+      if (*threads > 0) std::cerr << " --threads " << *threads;
+      if (*cold_start) std::cerr << " --no-warm-start";
+      std::cerr << " --resume\n";
+      *exit_code = kExitInterrupted;
+    } catch (const GenerateAborted&) {
+      *exit_code = kExitBadInput;  // MPI rank > 0: rank 0 reports why
+    } catch (const std::exception& e) {
+      std::cerr << "wrc generate: error: " << e.what() << '\n';
+      *exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace wrc::cli

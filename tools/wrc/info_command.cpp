@@ -1,0 +1,149 @@
+// `wrc info TABLE.h5 [--json]`: what a table holds and where it came from.
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tools/wrc/commands.h"
+#include "wrc/generator.h"
+
+namespace wrc::cli {
+namespace {
+
+using nlohmann::json;
+
+const char* const kStatusNames[kPointStatusCount] = {"ok", "no_contact", "not_converged", "error"};
+
+// NaN is not JSON: null instead.
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string Attribute(const TableInfo& info, const std::string& name) {
+  for (const auto& [key, value] : info.attributes) {
+    if (key == name) return value;
+  }
+  return {};
+}
+
+json InfoJson(const std::string& path, const TableInfo& info) {
+  json axes = json::array();
+  for (const TableInfo::Axis& axis : info.axes) {
+    axes.push_back({{"name", axis.name},
+                    {"unit", axis.unit},
+                    {"size", axis.values.size()},
+                    {"min", Number(axis.values.front())},
+                    {"max", Number(axis.values.back())},
+                    {"values", axis.values}});
+  }
+  json outputs = json::array();
+  for (const TableInfo::Output& output : info.outputs) {
+    outputs.push_back({{"name", output.name},
+                       {"unit", output.unit},
+                       {"min", Number(output.min)},
+                       {"max", Number(output.max)}});
+  }
+  json status = json::object();
+  for (int s = 0; s < kPointStatusCount; ++s) status[kStatusNames[s]] = info.status_counts[s];
+  if (info.other_status > 0) status["invalid"] = info.other_status;
+  json attributes = json::object();
+  for (const auto& [name, value] : info.attributes) attributes[name] = value;
+  json failures = json::array();
+  for (const TableInfo::Failure& failure : info.failures) {
+    json point = json::object();
+    for (std::size_t a = 0; a < info.axes.size() && a < failure.indices.size(); ++a) {
+      point[info.axes[a].name] = info.axes[a].values[failure.indices[a]];
+    }
+    failures.push_back({{"index", failure.index},
+                        {"indices", failure.indices},
+                        {"point", point},
+                        {"message", failure.message}});
+  }
+  return {
+      {"file", path},
+      {"format", info.format},
+      {"format_version", info.format_version},
+      {"points", info.points},
+      {"axes", axes},
+      {"outputs", outputs},
+      {"status", status},
+      {"failures", failures},
+      {"solve_time_s",
+       {{"total", info.solve_time_total_s},
+        {"mean", info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0},
+        {"max", info.solve_time_max_s}}},
+      {"profiles",
+       {{"rail", {{"name", info.rail_profile_name}, {"bytes", info.rail_profile_bytes}}},
+        {"wheel", {{"name", info.wheel_profile_name}, {"bytes", info.wheel_profile_bytes}}}}},
+      {"attributes", attributes}};
+}
+
+void PrintHuman(const std::string& path, const TableInfo& info) {
+  std::cout << path << ": " << info.format << " version " << info.format_version << ", "
+            << info.points << " points\n";
+  for (const char* name :
+       {"wrc_version", "created", "rail_profile_sha256", "wheel_profile_sha256", "z_warm_start"}) {
+    const std::string value = Attribute(info, name);
+    if (!value.empty()) std::cout << "  " << std::left << std::setw(22) << name << value << '\n';
+  }
+  std::cout << "  profiles: rail " << info.rail_profile_name << " (" << info.rail_profile_bytes
+            << " bytes), wheel " << info.wheel_profile_name << " (" << info.wheel_profile_bytes
+            << " bytes)\naxes:\n";
+  for (const TableInfo::Axis& axis : info.axes) {
+    std::cout << "  " << std::left << std::setw(14) << axis.name << std::right << std::setw(6)
+              << axis.values.size() << " values  " << axis.values.front() << " to "
+              << axis.values.back() << ' ' << axis.unit << '\n';
+  }
+  std::cout << "outputs (range over ok points):\n";
+  for (const TableInfo::Output& output : info.outputs) {
+    std::cout << "  " << std::left << std::setw(14) << output.name << std::setw(8) << output.unit
+              << std::right << output.min << " to " << output.max << '\n';
+  }
+  std::cout << "status:";
+  for (int s = 0; s < kPointStatusCount; ++s) {
+    std::cout << ' ' << kStatusNames[s] << ' ' << info.status_counts[s];
+  }
+  if (info.other_status > 0) std::cout << " invalid " << info.other_status;
+  std::cout << "\nsolve time: total " << info.solve_time_total_s << " s, mean "
+            << (info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0)
+            << " s, max " << info.solve_time_max_s << " s\n";
+  if (!info.failures.empty()) {
+    std::cout << "failed points:\n";
+    for (const TableInfo::Failure& failure : info.failures) {
+      std::cout << "  (";
+      for (std::size_t a = 0; a < info.axes.size(); ++a) {
+        std::cout << (a ? ", " : "") << info.axes[a].name << " = "
+                  << info.axes[a].values[failure.indices[a]];
+      }
+      std::cout << "): " << failure.message << '\n';
+    }
+  }
+  std::cout << "scene:\n" << Attribute(info, "scene");
+}
+
+}  // namespace
+
+void AddInfoCommand(CLI::App& app, int* exit_code) {
+  auto* cmd =
+      app.add_subcommand("info", "Show what a table holds: axes, outputs, status, provenance");
+  auto path = std::make_shared<std::string>();
+  auto as_json = std::make_shared<bool>(false);
+  cmd->add_option("TABLE", *path, "Table file (HDF5, written by wrc generate)")->required();
+  cmd->add_flag("--json", *as_json, "Print one JSON object");
+  cmd->callback([=]() {
+    try {
+      const TableInfo info = ReadTableInfo(*path);
+      if (*as_json) {
+        std::cout << InfoJson(*path, info).dump(1) << '\n';
+      } else {
+        PrintHuman(*path, info);
+      }
+      *exit_code = kExitOk;
+    } catch (const std::exception& e) {
+      std::cerr << "wrc info: error: " << e.what() << '\n';
+      *exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace wrc::cli
