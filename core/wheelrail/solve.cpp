@@ -289,12 +289,22 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
       result = SolveAt(pb, z, false, &timings);
       met = std::fabs(result.force_T(2) - fz) <= tolerance;
     } else {
-      for (int pass = 0; pass < 8 && !met; ++pass) {
+      // Newton steps on the full force: the first with the normal-only stiffness, then with the
+      // secant stiffness of the full solves (at flange contact fs·sin δ changes with z as much
+      // as the normal part, and the normal stiffness alone converges only linearly there).
+      double z_last = 0.0, f_last = 0.0;
+      for (int pass = 0; pass < 20 && !met; ++pass) {
         ++iterations;
         result = SolveAt(pb, z, true, &timings);
-        const double error = result.force_T(2) - fz;
-        met = std::fabs(error) <= tolerance;
-        z -= error / stiffness;
+        const double f = result.force_T(2);
+        met = std::fabs(f - fz) <= tolerance;
+        if (pass > 0 && z != z_last) {
+          const double secant = (f - f_last) / (z - z_last);
+          if (secant > 0.0) stiffness = secant;
+        }
+        z_last = z;
+        f_last = f;
+        z -= (f - fz) / stiffness;
       }
     }
     if (!met) {

@@ -230,8 +230,10 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
                     Range(0.0, 10.0, 0.25 * f), false, false});
   sweeps.push_back({"heavy_haul_z", "Heavy haul y = 14.85 mm, z through the patch merge",
                     "wheelset z, mm", Range(1.0, 1.3, 0.005 * f), false, true});
-  sweeps.push_back({"heavy_haul_spin", "Heavy haul y = 14.85 mm, fz = 100 kN, spin", "spin, -",
-                    Range(-0.01, 0.01, 0.001 * f), false, false});
+  sweeps.push_back(
+      {"heavy_haul_omega",
+       "Heavy haul y = 14.85 mm, fz = 100 kN, wheelset angular velocity (paper Fig. 14)",
+       "omega, rad/s", Range(-33.5, -30.7, 0.1 * f), false, false});
   sweeps.push_back({"groove_load", "Ball R10 in groove R10.02 (nearly conformal), load", "fz, N",
                     LogRange(100.0, 20000.0, quick ? 6 : 11), true, false});
   auto method_text = [&](const std::string& m, bool heavy) {
@@ -250,7 +252,8 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
       return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.0);
     if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(m, true), v, 0.0, -32.1);
     if (sweep == "heavy_haul_omega") return HeavyHaul(profiles, method_text(m, true), 0, 1e5, v);
-    return Groove(profiles, method_text(m, false), v);
+    if (sweep == "groove_load") return Groove(profiles, method_text(m, false), v);
+    throw std::logic_error("no case template for sweep " + sweep);
   };
 
   std::ofstream summary(out_dir / "README.md");

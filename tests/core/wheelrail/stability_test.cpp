@@ -81,6 +81,18 @@ TEST(Stability, YawAndSpinToFullSlip) {
   EXPECT_GT(previous, 0.95 * 0.3 * 1e4);  // at 5 % spin the patch slides almost entirely
 }
 
+// Flange contact with roll, yaw and spin: here the tangential part of FZ(TR) (fs·sin δ at
+// ~70°) changes with z as much as the normal part; the vertical force iteration must still
+// meet fz (it once stalled at up to 8 N off on the Manchester table, points at y >= 5.5 mm).
+TEST(Stability, FlangeContactWithRollYawSpinMeetsFz) {
+  Case c = Manchester(ReferenceSurface::kCurved);
+  c.state.y = 7.0;
+  c.state.roll = -0.002;
+  c.state.yaw = -0.01;
+  c.state.omega = OmegaFromSpin(-0.01, c.state.velocity, c.wheelset.nominal_radius);
+  ExpectHealthy(SolveWheelRail(c), 1e4, "y = 7, roll, yaw, spin");
+}
+
 TEST(Stability, FrictionlessSweepHasNoTangentialForce) {
   Case c = Manchester(ReferenceSurface::kCurved);
   c.friction = Friction::Constant(0.0);
