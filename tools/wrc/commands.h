@@ -18,6 +18,9 @@ void AddGenerateCommand(CLI::App& app, int* exit_code);
 /// Registers `wrc info TABLE.h5 [--json]`: axes, outputs, status counts, provenance.
 void AddInfoCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc verify` (SPEC §5).
+void AddVerifyCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc study` (stability, solver accuracy against cost).
 void AddStudyCommand(CLI::App& app, int* exit_code);
 

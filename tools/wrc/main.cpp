@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   wrc::cli::AddSolveCommand(app, &exit_code);
   wrc::cli::AddGenerateCommand(app, &exit_code);
   wrc::cli::AddInfoCommand(app, &exit_code);
+  wrc::cli::AddVerifyCommand(app, &exit_code);
   wrc::cli::AddStudyCommand(app, &exit_code);
   try {
     app.parse(argc, argv);

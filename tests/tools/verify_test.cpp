@@ -1,0 +1,84 @@
+// `wrc verify` on small tables: errors shrink when the table is refined (issue 8), JSON per
+// SPEC §5, the tolerance gate.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Wrc() { return std::string(WRC_BINARY_DIR) + "/wrc"; }
+
+// Runs a command, returns its exit code and stdout.
+int RunCommand(const std::string& command, std::string* out) {
+  const fs::path file = fs::temp_directory_path() / "wrc_verify_test_stdout.txt";
+  const int status = std::system((command + " > '" + file.string() + "' 2>/dev/null").c_str());
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  *out = text.str();
+  return WEXITSTATUS(status);
+}
+
+// A 1-D scene over the lateral shift on the Manchester pair (planar, coarse grid, tread
+// contact only, so the outputs are smooth in y): step 1 mm against 0.5 mm.
+fs::path WriteScene(const fs::path& dir, double step) {
+  std::ostringstream t;
+  t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \"" << WRC_SOURCE_DIR
+    << "/tables/profiles/MBench_UIC60_v3.prr\"\n[wheel]\nprofile = \"" << WRC_SOURCE_DIR
+    << "/tables/profiles/MBench_S1002_v3.prw\"\n[grid]\ndx = 0.5\nds = 0.5\n"
+    << "[method]\nreference = \"planar\"\n[state]\nfz = 10000.0\nroll = 0.0\nyaw = 0.002\n"
+    << "velocity = 2000.0\nspin = 0.001\n[table]\naxes = [\"y\"]\ny = {from = 0.0, to = 4.0, step "
+       "= "
+    << step << "}\noutputs = [\"fx\", \"fy\", \"fz\", \"z\"]\n";
+  const fs::path path = dir / ("scene_" + std::to_string(static_cast<int>(step * 100)) + ".toml");
+  std::ofstream(path) << t.str();
+  return path;
+}
+
+TEST(Verify, ErrorsShrinkWhenTheTableIsRefined) {
+  const fs::path dir = fs::temp_directory_path() / "wrc_verify_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  double rms[2] = {0.0, 0.0};
+  int k = 0;
+  for (double step : {1.0, 0.5}) {
+    const fs::path scene = WriteScene(dir, step);
+    const fs::path table = dir / ("table_" + std::to_string(k) + ".h5");
+    std::string out;
+    ASSERT_EQ(RunCommand(Wrc() + " generate '" + scene.string() + "' -o '" + table.string() +
+                             "' --quiet --threads 2",
+                         &out),
+              0);
+    ASSERT_EQ(
+        RunCommand(Wrc() + " verify '" + table.string() + "' --samples 24 --seed 7 --json", &out),
+        0);
+    const nlohmann::json r = nlohmann::json::parse(out);
+    EXPECT_EQ(r["samples"].get<int>(), 24);
+    EXPECT_EQ(r["exact_status"]["ok"].get<int>(), 24);
+    for (const char* key : {"max_abs", "rms", "p95_abs", "max_rel", "worst"}) {
+      EXPECT_TRUE(r["outputs"]["fy"].contains(key)) << key;
+    }
+    rms[k++] = r["outputs"]["z"]["rms"].get<double>();
+  }
+  // Multilinear interpolation of a smooth function: the error falls ~4x per halving; ask for 2x.
+  EXPECT_GT(rms[0], 0.0);
+  EXPECT_LT(rms[1], 0.5 * rms[0]) << rms[0] << " " << rms[1];
+
+  // The tolerance gate: an impossible tolerance fails with exit 1.
+  std::string out;
+  EXPECT_EQ(RunCommand(Wrc() + " verify '" + (dir / "table_0.h5").string() +
+                           "' --samples 4 --tolerance 1e-12",
+                       &out),
+            1);
+  EXPECT_EQ(RunCommand(Wrc() + " verify '" + (dir / "missing.h5").string() + "'", &out), 2);
+}
+
+}  // namespace
