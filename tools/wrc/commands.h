@@ -21,6 +21,9 @@ void AddInfoCommand(CLI::App& app, int* exit_code);
 /// Registers `wrc verify` (SPEC §5).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 
+/// Adds `solver` and `tables` (accuracy against cost) to `wrc study`.
+void AddCostStudies(CLI::App& study, int* exit_code);
+
 /// Registers `wrc study` (stability, solver accuracy against cost).
 void AddStudyCommand(CLI::App& app, int* exit_code);
 

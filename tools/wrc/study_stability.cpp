@@ -346,6 +346,7 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
 void AddStudyCommand(CLI::App& app, int* exit_code) {
   auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
   study->require_subcommand(1);
+  AddCostStudies(*study, exit_code);
   auto* stability = study->add_subcommand("stability", "Sweep the hard cases (issue 9) and report");
   auto out = std::make_shared<std::string>("docs/stability");
   auto profiles = std::make_shared<std::string>("../shared/profiles");
