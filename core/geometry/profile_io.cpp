@@ -85,8 +85,6 @@ std::vector<std::string_view> Split(std::string_view text, std::string_view sepa
   return tokens;
 }
 
-constexpr std::string_view kBlanks = " \t\f\v";
-
 /// The file's lines without line terminators (LF or CRLF). Throws for a missing, unreadable or
 /// empty file.
 std::vector<std::string> ReadLines(const std::string& path) {

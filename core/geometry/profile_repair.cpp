@@ -35,6 +35,11 @@ constexpr double kMaxRepairableLoop = 2.0;
 constexpr double kMinProfileLength = 5.0;
 constexpr double kMaxProfileLength = 500.0;
 constexpr std::size_t kMinPoints = 4;
+// A point this close (mm) to the previous one counts as a repeat. 1 nm lies far below the
+// resolution of profile measurements (micrometres), and a shorter segment has no usable
+// direction: it made the smoothing system singular (found by fuzzing, see docs/robustness.md)
+// and can vanish in the spline's summed arc length.
+constexpr double kRepeatDistance = 1e-6;
 
 struct Point {
   double y;
@@ -102,14 +107,14 @@ bool AutoMirrorZ(const std::vector<Point>& points, ProfileKind kind, const std::
   return false;
 }
 
-/// Drops points equal to their predecessor.
+/// Drops points equal to (within kRepeatDistance of) their predecessor.
 void RemoveDuplicates(std::vector<Point>& points, const std::string& source,
                       std::vector<std::string>& warnings) {
   std::vector<Point> kept;
   kept.reserve(points.size());
   std::vector<int> dropped_lines;
   for (const Point& p : points) {
-    if (!kept.empty() && kept.back().y == p.y && kept.back().z == p.z) {
+    if (!kept.empty() && Distance(kept.back(), p) <= kRepeatDistance) {
       dropped_lines.push_back(p.line);
       continue;
     }
@@ -204,7 +209,8 @@ bool SegmentsIntersect(const Point& a, const Point& b, const Point& c, const Poi
   }
   t_ab = Cross(qy, qz, sy, sz) / denominator;
   t_cd = Cross(qy, qz, ry, rz) / denominator;
-  if (t_ab < 0.0 || t_ab > 1.0 || t_cd < 0.0 || t_cd > 1.0) return false;
+  // Written so that NaN (from coordinates whose products overflow) means no crossing.
+  if (!(t_ab >= 0.0 && t_ab <= 1.0 && t_cd >= 0.0 && t_cd <= 1.0)) return false;
   where = Point{a.y + t_ab * ry, a.z + t_ab * rz, a.line};
   return true;
 }
@@ -232,7 +238,7 @@ void RemoveLoops(std::vector<Point>& points, const std::string& source,
                                   std::to_string(points[i + 1].line) +
                                   " crosses segment from line " + std::to_string(points[j].line) +
                                   " to " + std::to_string(points[j + 1].line);
-        if (loop > kMaxRepairableLoop) {
+        if (!(loop <= kMaxRepairableLoop)) {  // NaN too: never "repair" an unmeasurable loop.
           throw InputError(At(source, points[i].line,
                               "the profile crosses itself (" + where + ", a loop of " +
                                   Format("%.3g", loop) +
@@ -344,13 +350,14 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
   RemoveDuplicates(points, source, warnings);
   RequireEnoughPoints(points, source, last_line, " after removing zig-zags");
 
-  // 5. Loops.
+  // 5. Loops; the crossing point that replaces a loop may coincide with its neighbour.
   RemoveLoops(points, source, warnings);
+  RemoveDuplicates(points, source, warnings);
   RequireEnoughPoints(points, source, last_line, " after removing loops");
 
   // 6. Size check.
   const double length = Length(points);
-  if (length < kMinProfileLength || length > kMaxProfileLength) {
+  if (!(length >= kMinProfileLength && length <= kMaxProfileLength)) {  // NaN fails too.
     throw InputError(source + ": profile length " + Format("%.6g", length) +
                      " mm is outside [5, 500] mm (CONTACT's limits); are the units mm?");
   }

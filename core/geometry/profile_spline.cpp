@@ -23,7 +23,8 @@ namespace {
 // summing a few thousand interval lengths (~1e-13 relative).
 constexpr double kKnotTolerance = 1e-10;
 // The refinement contracts fast (each pass multiplies the knot changes by roughly the relative
-// variation of the speed |r'| within an interval); 50 passes are never needed in practice.
+// variation of the speed |r'| within an interval); 50 passes are never needed in practice, so a
+// part that has not settled by then is refused rather than parametrised wrongly.
 constexpr int kMaxRefinements = 50;
 // Evaluations this far (relative to the length) outside [0, length] are clamped, so that
 // s = length computed by subtraction still works; anything further out is an error.
@@ -257,7 +258,9 @@ gsl::Spline PartSpline(std::vector<double> s, std::vector<double> f, PartEnds en
 
 /// The knots of the part through (y, z) starting at arc length `start`: chord lengths, then
 /// refined until each interval's parameter length equals the spline's arc length over it
-/// (chord length underestimates the arc length of curved parts).
+/// (chord length underestimates the arc length of curved parts). Empty when the refinement
+/// does not settle: points that turn back sharply within a part can make it run away (each
+/// pass lengthens an overshooting interval, which overshoots more) until the knots overflow.
 std::vector<double> PartKnots(const std::vector<double>& y, const std::vector<double>& z,
                               double start, PartEnds ends) {
   std::vector<double> s = ChordLengths(y, z);
@@ -269,11 +272,13 @@ std::vector<double> PartKnots(const std::vector<double>& y, const std::vector<do
     double change = 0.0;
     for (std::size_t i = 0; i < s.size(); ++i) {
       change = std::max(change, std::abs(refined[i] - s[i]));
+      // NaN fails the comparison too.
+      if (i > 0 && !(refined[i] > refined[i - 1] && std::isfinite(refined[i]))) return {};
     }
     s = std::move(refined);
-    if (change <= kKnotTolerance * s.back()) break;
+    if (change <= kKnotTolerance * s.back()) return s;
   }
-  return s;
+  return {};
 }
 
 /// y on knot interval [s_i, s_i+1] of `part`, with its monotone pieces and range.
@@ -367,6 +372,17 @@ ProfileSpline::ProfileSpline(const Profile& profile) {
     const double start = impl.s[bounds[p]];
     const PartEnds ends{p > 0, p + 2 < bounds.size()};
     std::vector<double> knots = PartKnots(y, z, start, ends);
+    if (knots.empty()) {
+      const auto line_of = [&profile](std::size_t i) {
+        return i < profile.lines.size() ? profile.lines[i] : static_cast<int>(i) + 1;
+      };
+      throw InputError(profile.source + ":" + std::to_string(line_of(bounds[p])) +
+                       ": no arc-length spline through the points of lines " +
+                       std::to_string(line_of(bounds[p])) + " to " +
+                       std::to_string(line_of(bounds[p + 1])) +
+                       " (its knot refinement does not converge); the profile turns back "
+                       "sharply there");
+    }
     std::copy(knots.begin(), knots.end(), impl.s.begin() + first);
     impl.part_start.push_back(knots.front());
     impl.parts.push_back(Part{bounds[p], bounds[p + 1], PartSpline(knots, std::move(y), ends),

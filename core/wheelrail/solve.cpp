@@ -1,6 +1,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "core/wheelrail/contact_search.h"
 #include "core/wheelrail/geometry.h"
@@ -32,9 +33,14 @@ void Validate(const Case& c) {
     throw InputError(c.source_name + ": state.velocity = " + std::to_string(st.velocity) +
                      ": steady rolling needs a positive forward velocity");
   }
-  if (std::fabs(st.roll) > 0.2 || std::fabs(st.yaw) > 0.2) {
-    throw InputError(c.source_name + ": roll/yaw of more than 0.2 rad is outside the range " +
-                     "of wheelset-on-track contact");
+  // Beyond 0.2 rad the wheelset is no longer on the track: the contact search along the rail
+  // profile and the planar/curved references assume a wheel standing on the rail.
+  for (const auto& [key, value] : {std::pair<const char*, double>{"state.roll", st.roll},
+                                   std::pair<const char*, double>{"state.yaw", st.yaw}}) {
+    if (std::fabs(value) > 0.2) {
+      throw InputError(c.source_name + ": " + key + " = " + std::to_string(value) +
+                       ": more than 0.2 rad is outside the range of wheelset-on-track contact");
+    }
   }
 }
 
@@ -226,7 +232,13 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     const double tolerance = options.fz_tolerance * fz;
     auto normal_force = [&](double z) {
       ++iterations;
-      return SolveAt(pb, z, false, &timings).force_T(2);
+      try {
+        return SolveAt(pb, z, false, &timings).force_T(2);
+      } catch (const InputError& e) {
+        // The search for z went beyond elastic contact: the force cannot be carried.
+        throw InputError(c.source_name + ": state.fz = " + std::to_string(fz) +
+                         " N is not reached within elastic contact (" + e.what() + ")");
+      }
     };
     // Secant on G(z) = F(z)^(2/3): for Hertzian contact F ∝ δ^1.5 with δ = z − z_c, so G is
     // close to linear in z and the secant converges in a few steps. A bracket [lo, hi] with

@@ -1131,5 +1131,114 @@ TEST(ProfileGslSpline, CubicEndConditions) {
                GslError);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Inputs found by tests/fuzz/fuzz_profile (docs/robustness.md); each was accepted by ReadProfile
+// and then failed in the spline with an exception other than InputError.
+
+TEST(ProfileFuzzFindings, RunawayKnotRefinementIsAnInputError) {
+  // From a mangled MiniProf file: the first four points turn back 33 mm in y before a kink at
+  // point 3. The not-a-knot spline into the kink overshoots, and every refinement pass made the
+  // overshooting interval longer (106, 145, 274, 1078, ... mm) until the knots overflowed to
+  // NaN and gsl_spline_init threw wrc::GslError.
+  const std::vector<double> y = {-3.6,  -36.749153, -36.691379, -3.16, -2.66, -2.16, -1.66,
+                                 -1.16, -0.65,      -0.15,      0.35,  0.85,  1.35,  1.85,
+                                 2.35,  2.85,       3.36,       3.86,  4.36};
+  const std::vector<double> z = {34.8511, 34.594554, 34.352088, -0.43,   -0.40, -0.37, -0.34,
+                                 -0.32,   -0.30,     -0.28,     -0.26,   -0.25, -0.24, -0.23,
+                                 -0.22,   -0.22,     -0.21,     -0.2101, -0.21};
+  ProfileOptions options;
+  options.mirror_z = MirrorZ::kNo;
+  const Profile profile = MakeProfile(y, z, ProfileKind::kRail, options, "runaway");
+  ASSERT_EQ(profile.kinks, (std::vector<std::size_t>{3}));
+  try {
+    const ProfileSpline spline(profile);
+    FAIL() << "the spline was built, length " << spline.length();
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("runaway:1:"), std::string::npos) << message;
+    EXPECT_NE(message.find("lines 1 to 4"), std::string::npos) << message;
+  }
+  // Without the kink the same points make one natural spline, whose refinement settles.
+  options.kink_high_rad = 4.0;
+  const ProfileSpline smooth(MakeProfile(y, z, ProfileKind::kRail, options, "runaway"));
+  EXPECT_GT(smooth.length(), 0.0);
+}
+
+TEST(ProfileFuzzFindings, PointsWithinANanometreAreRepeats) {
+  // A wavy line with one point repeated 1e-9 mm further on. Smoothing over 100 mm used to fail
+  // with std::runtime_error (a singular smoothing system: 1/h² of the tiny segment swamps the
+  // rest); a point 1e-29 mm off its predecessor, as in the fuzzed file, made ProfileSpline
+  // refuse a profile that RepairProfile had accepted.
+  for (const double gap : {1e-9, 1e-29}) {
+    std::vector<double> y, z;
+    for (int i = 0; i <= 40; ++i) {
+      y.push_back(0.5 * i);
+      z.push_back(0.01 * std::sin(i));
+    }
+    y.insert(y.begin() + 21, y[20]);
+    z.insert(z.begin() + 21, z[20] + gap);
+    ProfileOptions options;
+    options.mirror_z = MirrorZ::kNo;
+    for (const double smoothing : {0.0, 100.0}) {
+      options.smoothing = smoothing;
+      const Profile profile = MakeProfile(y, z, ProfileKind::kRail, options, "near_repeat");
+      EXPECT_EQ(profile.size(), 41u) << "gap " << gap << ", smoothing " << smoothing;
+      ASSERT_FALSE(profile.warnings.empty());
+      EXPECT_NE(profile.warnings.front().find("near_repeat:22: 1 duplicate point(s) removed"),
+                std::string::npos)
+          << profile.warnings.front();
+      const ProfileSpline spline(profile);
+      EXPECT_NEAR(spline.length(), 20.0, 0.1) << "gap " << gap << ", smoothing " << smoothing;
+    }
+  }
+  // 1 µm is a real (if dense) measurement: both points stay.
+  ProfileOptions options;
+  options.mirror_z = MirrorZ::kNo;
+  const Profile dense =
+      MakeProfile({0.0, 1.0, 1.001, 2.0, 3.0, 4.0, 5.0, 6.0},
+                  {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, ProfileKind::kRail, options, "dense");
+  EXPECT_EQ(dense.size(), 8u);
+}
+
+TEST(ProfileFuzzFindings, CrashInputsGiveProfilesOrInputErrors) {
+  // The crash_* files of the fuzz corpus, each an input that once escaped with an exception other
+  // than InputError or was accepted with non-finite points. Their first byte picks the extension
+  // and options as in tests/fuzz/fuzz_profile.cpp. crash_loop_crossing_repeat: a loop's crossing
+  // point landed on the next point, and smoothing the wheel failed with std::runtime_error.
+  // crash_overflowing_loop_crossing: a 1e308 coordinate made a "loop of nan mm" that was
+  // "repaired" with a NaN crossing point, and the NaN length passed the length check.
+  const char* const extensions[] = {".prr", ".prw", ".ban", ".whl", ".csv"};
+  const TempDir dir;
+  int inputs = 0;
+  for (const auto& entry :
+       fs::directory_iterator(fs::path(WRC_SOURCE_DIR) / "tests/fuzz/corpus/fuzz_profile")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("crash_", 0) != 0) continue;
+    std::ostringstream read;
+    read << std::ifstream(entry.path(), std::ios::binary).rdbuf();
+    const std::string bytes = read.str();
+    ASSERT_FALSE(bytes.empty()) << name;
+    const auto selector = static_cast<unsigned char>(bytes[0]);
+    ProfileOptions options;
+    options.smoothing = ((selector / 5) & 1u) != 0 ? 2.0 : 0.0;
+    options.mirror_y = ((selector / 5) & 2u) != 0;
+    const std::string path = dir.Write(name + extensions[selector % 5], bytes.substr(1));
+    for (const ProfileKind kind : {ProfileKind::kRail, ProfileKind::kWheel}) {
+      try {
+        const Profile profile = ReadProfile(path, kind, options);
+        for (std::size_t i = 0; i < profile.size(); ++i) {
+          ASSERT_TRUE(std::isfinite(profile.y[i]) && std::isfinite(profile.z[i])) << name;
+        }
+        const ProfileSpline spline(profile);
+        EXPECT_GT(spline.length(), 0.0) << name;
+      } catch (const InputError&) {
+        // Bad input, reported as documented; anything else fails the test.
+      }
+    }
+    ++inputs;
+  }
+  EXPECT_GE(inputs, 4);
+}
+
 }  // namespace
 }  // namespace wrc

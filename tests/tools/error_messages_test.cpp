@@ -1,0 +1,238 @@
+// Bad input to `wrc solve` (SPEC §3): each mistake a user can make in a wheel-rail case or its
+// profiles gives exit code 2 and one message on stderr that names the file, the line or key and
+// the offending value; a wheel that does not touch the rail is no error (status no_contact,
+// exit 0). Runs the real binary, like cli_test.cpp.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kWrcBinary = fs::path(WRC_BINARY_DIR) / "wrc";
+const fs::path kProfiles = fs::path(WRC_SHARED_DIR) / "profiles";
+
+// The Manchester benchmark pair with coarse elements, pressed 0.3 mm together (about 30 kN):
+// every case below fails, or finds no contact, before any fine solve, so the tests stay fast.
+std::vector<std::string> ValidWheelRailCaseLines() {
+  return {
+      "[problem]", "type = \"wheel-rail\"",
+      "[rail]",    "profile = '" + (kProfiles / "MBench_UIC60_v3.prr").string() + "'",
+      "[wheel]",   "profile = '" + (kProfiles / "MBench_S1002_v3.prw").string() + "'",
+      "[grid]",    "dx = 0.5",
+      "ds = 0.5",  "[state]",
+      "y = 0.0",   "z = 0.3",
+      "yaw = 0.0",
+  };
+}
+
+struct WrcRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string FileText(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Single-quoted for the shell, with embedded single quotes closed and reopened.
+std::string ShellWord(const std::string& word) {
+  std::string quoted = "'";
+  for (const char c : word) {
+    if (c == '\'') {
+      quoted += "'\\''";
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+class ErrorMessages : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string test_name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() /
+           ("wrc_error_messages_" + std::to_string(::getpid()) + "_" + test_name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  WrcRun Solve(const fs::path& case_file, bool as_json = false) const {
+    std::string command = ShellWord(kWrcBinary.string()) + " solve " + ShellWord(case_file);
+    if (as_json) command += " --json";
+    command += " >" + ShellWord(dir_ / "stdout") + " 2>" + ShellWord(dir_ / "stderr");
+    const int status = std::system(command.c_str());
+    WrcRun run;
+    if (status != -1 && WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
+    run.out = FileText(dir_ / "stdout");
+    run.err = FileText(dir_ / "stderr");
+    return run;
+  }
+
+  fs::path WriteFile(const std::string& name, const std::string& text) const {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // The valid case with the line `original` replaced by `replacement`; `line_number` gets the
+  // replaced line's number (1-based), as messages count it.
+  fs::path WriteCaseWith(const std::string& original, const std::string& replacement,
+                         int* line_number = nullptr) const {
+    std::vector<std::string> lines = ValidWheelRailCaseLines();
+    bool found = false;
+    std::string text;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (lines[i] == original) {
+        lines[i] = replacement;
+        found = true;
+        if (line_number != nullptr) *line_number = static_cast<int>(i) + 1;
+      }
+      text += lines[i] + "\n";
+    }
+    EXPECT_TRUE(found) << "no line '" << original << "' in the valid case";
+    return WriteFile("case.toml", text);
+  }
+
+  // The valid case reading its rail profile from `rail_file` (relative to the case file).
+  fs::path WriteCaseWithRail(const std::string& rail_file, int* line_number = nullptr) const {
+    return WriteCaseWith(ValidWheelRailCaseLines()[3], "profile = \"" + rail_file + "\"",
+                         line_number);
+  }
+
+  fs::path dir_;
+};
+
+// Checks exit code 2 and that stderr holds every one of `parts`.
+void ExpectBadInput(const WrcRun& run, const std::vector<std::string>& parts) {
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  for (const std::string& part : parts) {
+    EXPECT_NE(run.err.find(part), std::string::npos) << "'" << part << "' missing in: " << run.err;
+  }
+}
+
+TEST_F(ErrorMessages, ValidCaseSolves) {
+  // The base every other test breaks: without this, a failure below could hide a broken base.
+  const WrcRun run = Solve(WriteFile("case.toml",
+                                     [] {
+                                       std::string text;
+                                       for (const std::string& line : ValidWheelRailCaseLines()) {
+                                         text += line + "\n";
+                                       }
+                                       return text;
+                                     }()),
+                           /*as_json=*/true);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["status"], "ok");
+}
+
+TEST_F(ErrorMessages, MissingCaseFile) {
+  const fs::path missing = dir_ / "no_such_case.toml";
+  ExpectBadInput(Solve(missing), {missing.string(), "cannot open"});
+}
+
+TEST_F(ErrorMessages, MissingProfileFile) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWithRail("no_such_rail.prr", &line);
+  ExpectBadInput(Solve(case_file), {"case.toml:" + std::to_string(line),
+                                    "rail.profile = \"no_such_rail.prr\"", "not found"});
+}
+
+TEST_F(ErrorMessages, GarbageProfile) {
+  WriteFile("garbage.prr", "this is not a profile\n\x01\x02\x7f binary junk\n");
+  const WrcRun run = Solve(WriteCaseWithRail("garbage.prr"));
+  ExpectBadInput(run, {"garbage.prr:", "not a Simpack profile"});
+}
+
+TEST_F(ErrorMessages, TextInProfileData) {
+  WriteFile("rail.csv", "y,z\n-10,0\n-5,0.1\n0,0\nfive,0.1\n10,0\n");
+  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")), {"rail.csv:5:", "'five' is not a number"});
+}
+
+TEST_F(ErrorMessages, NanInProfile) {
+  WriteFile("rail.csv", "-10,0\n-5,0.1\n0,nan\n5,0.1\n10,0\n");
+  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")),
+                 {"rail.csv:3:", "'nan' is not a finite number"});
+}
+
+TEST_F(ErrorMessages, ProfileWithTwoPoints) {
+  WriteFile("rail.csv", "-10,0\n10,0\n");
+  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")),
+                 {"rail.csv:2:", "only 2 profile point(s)", "at least 4"});
+}
+
+TEST_F(ErrorMessages, UnknownKey) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("dx = 0.5", "dxx = 0.5", &line);
+  ExpectBadInput(Solve(case_file), {"case.toml:" + std::to_string(line), "grid.dxx = 0.5",
+                                    "unknown key", "did you mean grid.dx?"});
+}
+
+TEST_F(ErrorMessages, WrongType) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("dx = 0.5", "dx = \"fine\"", &line);
+  ExpectBadInput(Solve(case_file),
+                 {"case.toml:" + std::to_string(line), "grid.dx = \"fine\"", "must be a number"});
+}
+
+TEST_F(ErrorMessages, NegativeElementSize) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("dx = 0.5", "dx = -0.5", &line);
+  ExpectBadInput(Solve(case_file),
+                 {"case.toml:" + std::to_string(line), "grid.dx = -0.5", "must be positive"});
+}
+
+TEST_F(ErrorMessages, NanInState) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("y = 0.0", "y = nan", &line);
+  const WrcRun run = Solve(case_file, /*as_json=*/true);
+  ExpectBadInput(run, {"case.toml:" + std::to_string(line), "state.y = nan", "finite"});
+  // With --json, stdout still holds one object with status "error" (SPEC §3).
+  EXPECT_EQ(nlohmann::json::parse(run.out)["status"], "error");
+}
+
+TEST_F(ErrorMessages, LateralPositionOutOfRange) {
+  // The wheel, 500 mm to the side, lies nowhere above the rail: bad input, not "no contact".
+  const fs::path case_file = WriteCaseWith("y = 0.0", "y = 500.0");
+  ExpectBadInput(Solve(case_file), {"case.toml", "y = 500"});
+}
+
+// Roll beyond the range of wheelset-on-track contact names the key and value.
+TEST_F(ErrorMessages, RollOutOfRange) {
+  const fs::path case_file = WriteCaseWith("yaw = 0.0", "roll = 0.5");
+  ExpectBadInput(Solve(case_file), {"case.toml", "state.roll", "0.5", "0.2 rad"});
+}
+
+TEST_F(ErrorMessages, LiftedWheelIsNoContact) {
+  // z points down: z = -5 lifts the wheel 5 mm off the rail.
+  const WrcRun run = Solve(WriteCaseWith("z = 0.3", "z = -5.0"), /*as_json=*/true);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  EXPECT_EQ(result["status"], "no_contact");
+  EXPECT_TRUE(result["patches"].empty());
+}
+
+// An fz no elastic contact can carry names state.fz and its value.
+TEST_F(ErrorMessages, UnreachableVerticalForce) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("z = 0.3", "fz = 1.0e12", &line);
+  ExpectBadInput(Solve(case_file), {"case.toml", "state.fz = 1", "not reached"});
+}
+
+}  // namespace
