@@ -419,6 +419,12 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   if (omega) state.omega = *omega;
   if (state.spin) {
     state.omega = OmegaFromSpin(*state.spin, state.velocity, wheelset.nominal_radius);
+    // Finite inputs of absurd size (velocity 1e300 on a 1e-300 mm wheel) overflow.
+    if (!std::isfinite(state.omega)) {
+      section.Fail("spin",
+                   "gives a non-finite omega = -(state.velocity / wheelset.nominal_radius)·(1 + "
+                   "spin)");
+    }
   }
   return state;
 }

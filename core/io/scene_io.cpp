@@ -360,6 +360,19 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
   options.axis_names.insert(axis_names.begin(), axis_names.end());
   scene.base = ReadCase(root, file, base_dir, options);
   scene.base.source_text = std::string(text);
+  // omega is linear in spin: finite at both ends of the axis means finite on all of it.
+  for (const SceneAxis& axis : scene.axes) {
+    if (axis.name != "spin") continue;
+    for (const double spin : {axis.values.front(), axis.values.back()}) {
+      const double omega =
+          OmegaFromSpin(spin, scene.base.state.velocity, scene.base.wheelset.nominal_radius);
+      if (!std::isfinite(omega)) {
+        table.Fail("spin", "spin = " + FormatNumber(spin) +
+                               " gives a non-finite omega = -(state.velocity / "
+                               "wheelset.nominal_radius)·(1 + spin)");
+      }
+    }
+  }
   for (const SceneAxis& axis : scene.axes)
     ApplyAxisValue(scene.base, axis.name, axis.values.front());
 

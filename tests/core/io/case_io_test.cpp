@@ -497,5 +497,18 @@ TEST(CaseIo, LoadChecksFiles) {
   fs::remove_all(dir);
 }
 
+TEST(CaseIo, RejectsSpinWhoseOmegaOverflows) {
+  // Found by tests/fuzz/fuzz_case: every value finite, yet omega = -(velocity / nominal_radius)
+  // · (1 + spin) overflowed to -inf and the case was accepted.
+  const std::string with_spin = Replace(Replace(kWheelRailCase, "omega = -4.35", "spin = 0.0"),
+                                        "velocity = 2000.0", "velocity = 1e300");
+  ExpectCaseError(with_spin, "nominal_radius = 460.0", "nominal_radius = 1e-300",
+                  {"state.spin = 0: ", "non-finite omega"}, "spin = 0.0");
+  // The same sizes with omega given directly leave nothing to overflow.
+  EXPECT_EQ(ErrorOf(Replace(Replace(kWheelRailCase, "velocity = 2000.0", "velocity = 1e300"),
+                            "nominal_radius = 460.0", "nominal_radius = 1e-300")),
+            "");
+}
+
 }  // namespace
 }  // namespace wrc
