@@ -129,15 +129,9 @@ void ExpectBadInput(const WrcRun& run, const std::vector<std::string>& parts) {
 
 TEST_F(ErrorMessages, ValidCaseSolves) {
   // The base every other test breaks: without this, a failure below could hide a broken base.
-  const WrcRun run = Solve(WriteFile("case.toml",
-                                     [] {
-                                       std::string text;
-                                       for (const std::string& line : ValidWheelRailCaseLines()) {
-                                         text += line + "\n";
-                                       }
-                                       return text;
-                                     }()),
-                           /*as_json=*/true);
+  std::string text;
+  for (const std::string& line : ValidWheelRailCaseLines()) text += line + "\n";
+  const WrcRun run = Solve(WriteFile("case.toml", text), /*as_json=*/true);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["status"], "ok");
 }
