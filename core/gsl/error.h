@@ -3,6 +3,9 @@
 /// Error handling shared by the GSL wrappers in core/gsl/: GSL's default handler aborts the
 /// process, so the wrappers switch it off once and turn every non-zero status into an exception.
 
+#include <exception>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +34,28 @@ void DisableAbortOnError();
 
 /// Throws GslError(function, status) unless status is GSL_SUCCESS.
 void CheckStatus(int status, const char* function);
+
+/// Passes a C++ callable to a GSL routine as its C callback. An exception must not unwind
+/// through GSL's C frames (they have no unwind tables), so it is parked here, the callback
+/// returns NaN until GSL gives up, and the caller rethrows it once GSL has returned.
+struct GuardedCallback {
+  const std::function<double(double)>* f;
+  std::exception_ptr error;
+
+  static double Call(double x, void* params) {
+    auto* self = static_cast<GuardedCallback*>(params);
+    if (self->error) return std::numeric_limits<double>::quiet_NaN();
+    try {
+      return (*self->f)(x);
+    } catch (...) {
+      self->error = std::current_exception();
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  void RethrowIfFailed() const {
+    if (error) std::rethrow_exception(error);
+  }
+};
 
 }  // namespace gsl
 }  // namespace wrc

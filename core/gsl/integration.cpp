@@ -27,29 +27,9 @@ Workspace AllocateWorkspace(std::size_t max_intervals) {
   return workspace;
 }
 
-// Passes a C++ callable to GSL. An exception must not unwind through GSL's C frames (they have
-// no unwind tables), so it is parked here, the integrand reports NaN until GSL gives up, and
-// the wrapper rethrows it once GSL has returned.
-struct Integrand {
-  const std::function<double(double)>* f;
-  std::exception_ptr error;
+using Integrand = GuardedCallback;
 
-  static double Call(double x, void* params) {
-    auto* self = static_cast<Integrand*>(params);
-    if (self->error) return std::numeric_limits<double>::quiet_NaN();
-    try {
-      return (*self->f)(x);
-    } catch (...) {
-      self->error = std::current_exception();
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-
-  gsl_function AsGsl() { return gsl_function{&Integrand::Call, this}; }
-  void RethrowIfFailed() const {
-    if (error) std::rethrow_exception(error);
-  }
-};
+gsl_function AsGsl(Integrand& integrand) { return gsl_function{&Integrand::Call, &integrand}; }
 
 }  // namespace
 
@@ -58,7 +38,7 @@ IntegrationResult IntegrateQags(const std::function<double(double)>& f, double l
   DisableAbortOnError();
   Workspace workspace = AllocateWorkspace(options.max_intervals);
   Integrand integrand{&f, nullptr};
-  gsl_function function = integrand.AsGsl();
+  gsl_function function = AsGsl(integrand);
   IntegrationResult result;
   const int status = gsl_integration_qags(&function, lo, hi, options.abs_tolerance,
                                           options.rel_tolerance, options.max_intervals,
@@ -76,7 +56,7 @@ IntegrationResult IntegrateQagp(const std::function<double(double)>& f, std::vec
   DisableAbortOnError();
   Workspace workspace = AllocateWorkspace(options.max_intervals);
   Integrand integrand{&f, nullptr};
-  gsl_function function = integrand.AsGsl();
+  gsl_function function = AsGsl(integrand);
   IntegrationResult result;
   const int status = gsl_integration_qagp(
       &function, points.data(), points.size(), options.abs_tolerance, options.rel_tolerance,
@@ -91,7 +71,7 @@ IntegrationResult IntegrateCauchy(const std::function<double(double)>& f, double
   DisableAbortOnError();
   Workspace workspace = AllocateWorkspace(options.max_intervals);
   Integrand integrand{&f, nullptr};
-  gsl_function function = integrand.AsGsl();
+  gsl_function function = AsGsl(integrand);
   IntegrationResult result;
   const int status = gsl_integration_qawc(&function, lo, hi, pole, options.abs_tolerance,
                                           options.rel_tolerance, options.max_intervals,

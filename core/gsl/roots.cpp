@@ -18,26 +18,7 @@ struct SolverDeleter {
 };
 using Solver = std::unique_ptr<gsl_root_fsolver, SolverDeleter>;
 
-// Same reasoning as for the integrands in integration.cpp: exceptions must not unwind through
-// GSL, so they are parked and rethrown after GSL returns.
-struct Objective {
-  const std::function<double(double)>* f;
-  std::exception_ptr error;
-
-  static double Call(double x, void* params) {
-    auto* self = static_cast<Objective*>(params);
-    if (self->error) return std::numeric_limits<double>::quiet_NaN();
-    try {
-      return (*self->f)(x);
-    } catch (...) {
-      self->error = std::current_exception();
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-  void RethrowIfFailed() const {
-    if (error) std::rethrow_exception(error);
-  }
-};
+using Objective = GuardedCallback;  // exceptions must not unwind through GSL
 
 }  // namespace
 
