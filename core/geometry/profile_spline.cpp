@@ -89,7 +89,11 @@ std::vector<double> CriticalPoints(const Cubic& p) {
 /// kept inside the shrinking bracket, bisection when a step would leave it.
 double SolveMonotone(const Cubic& p, double target, double lo, double hi) {
   double f_lo = p.Value(lo) - target;
-  double t = 0.5 * (lo + hi);
+  // Start from the chord (regula falsi): on the short, nearly straight knot intervals of a
+  // profile it is within a few ulps of the root after one or two Newton steps.
+  const double f_hi = p.Value(hi) - target;
+  double t = f_lo != f_hi ? lo + (hi - lo) * f_lo / (f_lo - f_hi) : 0.5 * (lo + hi);
+  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double f = p.Value(t) - target;
     if (f == 0.0) return t;
@@ -111,6 +115,7 @@ double SolveMonotone(const Cubic& p, double target, double lo, double hi) {
 /// One knot interval's y(s) as a cubic in t = s − s_i, with what SAtY needs precomputed.
 struct YPiece {
   Cubic y;
+  Cubic z;  ///< z(s) on the same interval, for ZAtY without a GSL lookup.
   /// 0, the critical points of y inside (0, h) ascending, h: y is monotone between them.
   std::array<double, 4> bounds;
   std::size_t bound_count;
@@ -162,8 +167,8 @@ struct ProfileSpline::Impl {
     const double length = s.back();
     const double slack = kRangeSlack * length;
     if (!(at >= -slack && at <= length + slack)) {
-      throw std::out_of_range(source + ": arc length " + std::to_string(at) +
-                              " mm outside the profile [0, " + std::to_string(length) + "]");
+      throw std::out_of_range(source + ": arc length " + FormatNumber(at) +
+                              " mm outside the profile [0, " + FormatNumber(length) + "]");
     }
     at = std::clamp(at, 0.0, length);
   }
@@ -283,9 +288,11 @@ std::vector<double> PartKnots(const std::vector<double>& y, const std::vector<do
 
 /// y on knot interval [s_i, s_i+1] of `part`, with its monotone pieces and range.
 YPiece MakeYPiece(const Part& part, const std::vector<double>& s, const std::vector<double>& y,
-                  std::size_t i) {
+                  const std::vector<double>& z, std::size_t i) {
   YPiece piece{};
   piece.y = HermiteCubic(y[i], y[i + 1], part.y.Derivative(s[i]), part.y.Derivative(s[i + 1]),
+                         s[i + 1] - s[i]);
+  piece.z = HermiteCubic(z[i], z[i + 1], part.z.Derivative(s[i]), part.z.Derivative(s[i + 1]),
                          s[i + 1] - s[i]);
   piece.y_min = std::min(y[i], y[i + 1]);
   piece.y_max = std::max(y[i], y[i + 1]);
@@ -392,7 +399,7 @@ ProfileSpline::ProfileSpline(const Profile& profile) {
   impl.pieces.reserve(n - 1);
   for (const Part& part : impl.parts) {
     for (std::size_t i = part.first; i < part.last; ++i) {
-      impl.pieces.push_back(MakeYPiece(part, impl.s, profile.y, i));
+      impl.pieces.push_back(MakeYPiece(part, impl.s, profile.y, profile.z, i));
     }
   }
   impl.y_min = impl.pieces.front().y_min;
@@ -488,27 +495,89 @@ std::vector<double> profile_detail::SplineAccess::SAtYTryingEveryInterval(
 }
 
 ProfileHeight ProfileSpline::ZAtY(double y) const {
-  ProfileHeight result;
-  const std::vector<double> roots = SAtY(y);
-  if (roots.empty()) {
-    result.status = ProfileHeight::Status::kOutside;
-    result.z = std::numeric_limits<double>::quiet_NaN();
-    result.s = std::numeric_limits<double>::quiet_NaN();
-    return result;
-  }
-  result.status =
-      roots.size() == 1 ? ProfileHeight::Status::kInside : ProfileHeight::Status::kMultiValued;
-  // The surface facing the other body: the top of a rail, the bottom of a wheel.
-  const bool rail = impl_->kind == ProfileKind::kRail;
-  result.s = roots.front();
-  result.z = impl_->PartAt(roots.front()).z.Value(roots.front());
-  for (std::size_t i = 1; i < roots.size(); ++i) {
-    const double z = impl_->PartAt(roots[i]).z.Value(roots[i]);
-    if (rail ? z < result.z : z > result.z) {
-      result.z = z;
-      result.s = roots[i];
+  // The roots of SAtY, collected in a fixed buffer and evaluated on the cached interval cubics:
+  // ZAtY is the inner loop of every wheel–rail distance (thousands of calls per solve), where a
+  // heap-allocated root list and two GSL interval searches per call cost more than the roots.
+  const Impl& impl = *impl_;
+  struct Root {
+    double s, z, dz_dy;
+  };
+  constexpr std::size_t kCapacity = 16;
+  std::array<Root, kCapacity> roots;
+  std::size_t count = 0;
+  bool overflow = false;
+  auto add = [&](const YPiece& piece, std::size_t k, double t) {
+    if (count == kCapacity) {
+      overflow = true;
+      return;
+    }
+    const double dy = piece.y.Slope(t), dz = piece.z.Slope(t);
+    roots[count++] = {std::clamp(impl.s[k] + t, 0.0, impl.s.back()), piece.z.Value(t),
+                      std::fabs(dy) > 1e-12 * std::fabs(dz) ? dz / dy : 1e12};
+  };
+  if (y >= impl.y_min && y <= impl.y_max) {
+    const YTable& table = impl.table;
+    const std::size_t bucket = table.Bucket(y);
+    for (std::size_t e = table.begin[bucket]; e < table.begin[bucket + 1]; ++e) {
+      const std::size_t k = table.intervals[e];
+      const YPiece& piece = impl.pieces[k];
+      if (y < piece.y_min || y > piece.y_max) continue;
+      for (std::size_t b = 0; b + 1 < piece.bound_count; ++b) {
+        const double f_lo = piece.y.Value(piece.bounds[b]) - y;
+        const double f_hi = piece.y.Value(piece.bounds[b + 1]) - y;
+        if (f_lo == 0.0) {
+          add(piece, k, piece.bounds[b]);
+        } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
+          add(piece, k, SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
+        }
+      }
     }
   }
+  if (impl.last_y == y) {
+    const YPiece& last = impl.pieces.back();
+    add(last, impl.pieces.size() - 1, last.y.h);
+  }
+  ProfileHeight result;
+  if (overflow) {
+    // More crossings than the buffer holds (a pathological profile): the general path.
+    const std::vector<double> all = SAtY(y);
+    result.status =
+        all.size() == 1 ? ProfileHeight::Status::kInside : ProfileHeight::Status::kMultiValued;
+    const bool rail = impl.kind == ProfileKind::kRail;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const double z = impl.PartAt(all[i]).z.Value(all[i]);
+      if (i == 0 || (rail ? z < result.z : z > result.z)) {
+        result.z = z;
+        result.s = all[i];
+        const ProfileVector t = TangentAt(all[i]);
+        result.dz_dy = std::fabs(t.y) > 1e-12 ? t.z / t.y : 1e12;
+      }
+    }
+    return result;
+  }
+  if (count == 0) {
+    result.status = ProfileHeight::Status::kOutside;
+    result.z = result.s = result.dz_dy = std::numeric_limits<double>::quiet_NaN();
+    return result;
+  }
+  std::sort(roots.begin(), roots.begin() + count,
+            [](const Root& a, const Root& b) { return a.s < b.s; });
+  // A root on a knot or critical point can be found from both sides (as in SAtY).
+  std::size_t distinct = 1;
+  for (std::size_t i = 1; i < count; ++i) {
+    if (roots[i].s - roots[distinct - 1].s > 1e-9) roots[distinct++] = roots[i];
+  }
+  result.status =
+      distinct == 1 ? ProfileHeight::Status::kInside : ProfileHeight::Status::kMultiValued;
+  // The surface facing the other body: the top of a rail, the bottom of a wheel.
+  const bool rail = impl.kind == ProfileKind::kRail;
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < distinct; ++i) {
+    if (rail ? roots[i].z < roots[best].z : roots[i].z > roots[best].z) best = i;
+  }
+  result.s = roots[best].s;
+  result.z = roots[best].z;
+  result.dz_dy = roots[best].dz_dy;
   return result;
 }
 

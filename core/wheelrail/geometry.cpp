@@ -122,9 +122,7 @@ PlacedWheel::PlacedWheel(std::shared_ptr<const ProfileSpline> spline, const Whee
 std::optional<std::pair<double, double>> PlacedWheel::Radius(double y_w) const {
   const ProfileHeight h = spline_->ZAtY(y_w);
   if (!h.found()) return std::nullopt;
-  const ProfileVector t = spline_->TangentAt(h.s);
-  const double slope = std::fabs(t.y) > 1e-12 ? t.z / t.y : 1e12;
-  return std::make_pair(nominal_radius_ + h.z, slope);
+  return std::make_pair(nominal_radius_ + h.z, h.dz_dy);
 }
 
 std::optional<double> PlacedWheel::IntersectLine(const Eigen::Vector3d& p0,

@@ -9,7 +9,8 @@
 ///  - for a rail:  from the track centre to the field side, y ascending overall;
 ///  - for a wheel: from the field side to the flange side, y descending overall;
 /// so that, walking along the points, the material is on the right-hand side (in the y–z
-/// picture with z pointing down).
+/// picture with z pointing down). The direction is judged from the two end points; when they
+/// have the same y the order is kept and a warning says so.
 ///
 /// Typical use:
 /// @code
@@ -60,9 +61,10 @@ struct ProfileOptions {
   /// algorithm is not documented. It agrees with CONTACT on every file in shared/profiles whose
   /// behaviour is known (Simpack files kept, MiniProf rails mirrored, grooves kept).
   MirrorZ mirror_z = MirrorZ::kAuto;
-  /// Smoothing wavelength L_filt in mm (CONTACT's SMOOTH with ISMOOTH = 1); 0 = no smoothing.
-  /// The points are replaced by a weighted cubic smoothing spline that halves fluctuations of
-  /// wavelength L_filt along the profile, damps shorter ones more and keeps longer ones:
+  /// Smoothing wavelength L_filt in mm (CONTACT's SMOOTH with ISMOOTH = 1); 0 = no smoothing,
+  /// otherwise finite and > 0. The points are replaced by a weighted cubic smoothing spline that
+  /// halves fluctuations of wavelength L_filt along the profile, damps shorter ones more and
+  /// keeps longer ones:
   /// minimises Σ w_i |x_i − f(s_i)|² + λ ∫|f''(s)|² ds with w_i = (s_{i+1} − s_{i−1})/2 and
   /// λ = (L_filt/2π)⁴, s the chord length of the repaired points.
   double smoothing = 0.0;
@@ -83,9 +85,11 @@ struct ProfileOptions {
   /// are left to the smoothing. kink_high_rad >= π disables the detection (the result is then
   /// the plain spline through all points); it must be > 0.
   double kink_high_rad = 0.52359877559829887;  // π/6
-  /// Neighbour threshold in rad; a negative value (the default) means kink_high_rad / 5.
+  /// Neighbour threshold in rad; a negative value (the default) means kink_high_rad / 5. NaN is
+  /// refused.
   double kink_low_rad = -1.0;
-  /// Half-width in mm of the neighbourhood that must be free of turns above kink_low_rad.
+  /// Half-width in mm of the neighbourhood that must be free of turns above kink_low_rad
+  /// (finite, >= 0).
   double kink_width = 2.0;
 };
 
@@ -135,53 +139,67 @@ std::optional<ProfileKind> ProfileKindFromExtension(const std::string& path);
 
 /// The format used for `path`: by extension (.prr/.prw Simpack, .ban/.whl MiniProf, .csv
 /// table); for other extensions by content (Simpack block keywords, MiniProf header keys),
-/// defaulting to a table. Throws InputError if the file cannot be opened.
+/// defaulting to a table. Throws InputError if the file cannot be opened or is empty.
 ProfileFormat DetectProfileFormat(const std::string& path);
 
-/// Parses a profile file without repairing it. Throws wrc::InputError (message
-/// "<file>:<line>: ...") for a missing or empty file, a value that is not a number or not finite
-/// (NaN, Inf) in the data section, or a data section that cannot be found.
+/// Parses a profile file without repairing it. Throws wrc::InputError: "<file>: cannot open
+/// profile file: ..." for a missing, unreadable file or a directory; "<file>:<line>: ..." for an
+/// empty file, a value that is not a number or not finite (NaN, Inf, 1e999) in the data section,
+/// a data section that cannot be found, and the Simpack errors below. The format comes from the
+/// extension, or from the contents for other extensions (see DetectProfileFormat).
 ///
 /// Format details:
 ///  - Simpack: comments start with '!' or '%' (outside quotes); points are the rows "y z
-///    [weight]" between point.begin and point.end; weights are ignored (with a warning if not 1).
-///    A non-zero "rotate" is refused, a non-zero approx.smooth ignored with a warning.
+///    [weight]" (separated by spaces, tabs or commas) between point.begin and point.end; weights
+///    are ignored (with a warning if not 1), further columns too (warning). Errors: point.end
+///    without point.begin, header.end/spline.end inside the point block, a file ending inside
+///    it, no point block at all, a non-finite number in a setting, a non-zero "rotate" and
+///    units.len.f <= 0. A non-zero approx.smooth is ignored with a warning, a missing
+///    units.len.f means mm (warning).
 ///  - MiniProf: the first two columns are y (MiniProf's X) and z (MiniProf's Y). The data
-///    section starts at the first line of three successive numeric lines; the lines before are
-///    the header. Numeric lines in the header (the "Sd Sh qR" line of old wheel files, e.g.
-///    avg_wheel.whl line 7) are ignored with a warning. In the data section, lines starting with a
-///    double quote are switched-off points and skipped with a warning; '%', '!' and (after the
-///    numbers) '"' start comments; other text after the numbers of a data line is ignored with a
-///    warning; any other text is an error.
+///    section starts at the first purely numeric line followed by two more numeric lines (blank,
+///    comment and switched-off lines in between do not count), or at the first purely numeric
+///    line when there is no such run; the lines before are the header. Numeric lines in the
+///    header (the "Sd Sh qR" line of old wheel files, e.g. avg_wheel.whl line 7) are ignored with
+///    a warning, and so are non-zero XOffset/YOffset (not applied). Lines starting with '%', '!'
+///    or '#' are comments. In the data section, lines starting with a double quote are
+///    switched-off points and skipped with a warning; after the numbers '%', '!' and '"' start
+///    comments; other text after the numbers of a data line is ignored with a warning; any other
+///    text is an error.
 ///  - Table: columns separated by commas, semicolons, tabs or spaces (with ';' as separator a
 ///    decimal comma is accepted); '#', '%' and '!' start comments; non-numeric lines are allowed
 ///    only before the first numeric line (a header). The first two columns are y and z.
 ProfilePoints ReadProfilePoints(const std::string& path);
 
-/// Reads `path` (ReadProfilePoints), then repairs it with RepairProfile.
+/// Reads `path` (ReadProfilePoints), then repairs it with RepairProfile. Adds a warning when the
+/// file declares the other kind (Simpack header "type") or, without a declaration, its extension
+/// suggests the other kind.
 Profile ReadProfile(const std::string& path, ProfileKind kind, const ProfileOptions& options = {});
 
-/// The repairs, in CONTACT's order:
+/// First checks the options, that every coordinate is finite and that there are at least 4
+/// points. Then the repairs, in CONTACT's order:
 ///  1. mirror y (option), mirror z (option or auto-detection, see ProfileOptions::mirror_z);
-///  2. drop exact repeats of the previous point (warning);
+///  2. drop repeats: points within 1 nm (1e-6 mm) of the previous point (warning); done again
+///     after steps 4 and 5, whose replacement points can land on a neighbour;
 ///  3. reverse the order if needed (see file comment);
 ///  4. zig-zags: where two successive points both turn the polyline by more than the threshold,
 ///     the pair is replaced by its average (CONTACT's rule; avg_HR.BAN loses one point); a single
 ///     point turning by more than the threshold (a spike) is deleted unless remove_spikes is
 ///     false (a wrc extension); warnings;
-///  5. loops: where the polyline crosses itself, a loop shorter than 2 mm (a stitching artefact)
+///  5. loops: where the polyline crosses itself, a loop of at most 2 mm (a stitching artefact)
 ///     is cut out at the crossing (warning); a longer loop is an error, as in CONTACT;
-///  6. checks: at least 4 points remain; the length is between 5 and 500 mm as CONTACT requires
-///     (this catches profiles in m or inches);
+///  6. checks: at least 4 points remain (checked after every step above); the length of the
+///     polyline is between 5 and 500 mm as CONTACT requires (this catches profiles in m or
+///     inches);
 ///  7. kinks (ProfileOptions::kink_high_rad), stored in Profile::kinks;
 ///  8. smoothing (ProfileOptions::smoothing), separately on each part between kinks, with the
 ///     kink points held fixed, so that smoothing never rounds a kink.
 /// Throws InputError naming the file (and lines) when a check fails or an option is invalid.
 Profile RepairProfile(ProfilePoints points, ProfileKind kind, const ProfileOptions& options = {});
 
-/// Builds a profile from coordinates in memory and repairs it like a file; `name` stands in for
-/// the file name in messages, and "lines" are the 1-based indices of the input points. Throws
-/// InputError for different sizes, non-finite values or a failed check.
+/// Builds a profile from coordinates in memory and repairs it like a file (RepairProfile); `name`
+/// stands in for the file name in messages, and "lines" are the 1-based indices of the input
+/// points. Throws InputError for different sizes, non-finite values or a failed check.
 Profile MakeProfile(const std::vector<double>& y, const std::vector<double>& z, ProfileKind kind,
                     const ProfileOptions& options = {}, const std::string& name = "<memory>");
 
@@ -203,6 +221,7 @@ struct ProfileHeight {
   Status status = Status::kOutside;
   double z = 0.0;  ///< Height at y, mm (NaN when outside).
   double s = 0.0;  ///< Arc length at that point, mm (NaN when outside).
+  double dz_dy = 0.0;  ///< Slope dz/dy there (±1e12 where the profile is vertical; NaN outside).
   /// True unless outside.
   bool found() const { return status != Status::kOutside; }
 };
@@ -220,14 +239,20 @@ struct SplineAccess;  // Test access to the internals (core/geometry/profile_int
 /// not-a-knot, taking the curvature up to the corner from the data. Without kinks this is one
 /// pair of GSL natural cubic splines through all points. The knots s_i start as the
 /// chord lengths of the polyline and are refined, part by part, until each knot interval's
-/// spline arc length equals its parameter length (to 1e-10 of the profile length), so s is the
-/// arc length of the curve itself. The curve passes through every point of the profile
+/// spline arc length (5-point Gauss–Legendre) equals its parameter length: the refinement stops
+/// when no knot moves by more than 1e-10 of the arc length at the part's end (at most the
+/// profile length), so s is the arc length of the curve itself. A part that has not settled
+/// after 50 passes, or whose knots stop increasing or become non-finite, is refused (see the
+/// constructor). The curve passes through every point of the profile
 /// (smoothing, if any, was applied to the points by RepairProfile). At a kink's s, the
 /// derivative-based queries (TangentAt, NormalAt, InclinationAt, CurvatureAt) use the part
 /// after the kink, the one with larger s. Thread-safe for concurrent const use. Copyable.
 class ProfileSpline {
  public:
-  /// Throws InputError for fewer than 4 points or coincident successive points.
+  /// Throws InputError for fewer than 4 points, coincident successive points ("<file>:<line>:
+  /// point coincides with the previous one"), kinks that are not interior points in ascending
+  /// order, and a part whose knot refinement does not settle ("<file>:<line>: no arc-length
+  /// spline through the points of lines A to B ...": points that turn back sharply).
   explicit ProfileSpline(const Profile& profile);
   ~ProfileSpline();
   ProfileSpline(const ProfileSpline& other);
@@ -244,7 +269,8 @@ class ProfileSpline {
   double YMin() const;
   double YMax() const;
 
-  /// Position (y(s), z(s)). s outside [0, length()] throws std::out_of_range.
+  /// Position (y(s), z(s)). Here and in the four queries below, an s within 1e-12·length() of
+  /// [0, length()] is clamped into it; one further outside (or NaN) throws std::out_of_range.
   ProfileVector PositionAt(double s) const;
   /// Unit tangent in the direction of increasing s. At a kink: the tangent leaving it.
   ProfileVector TangentAt(double s) const;
@@ -260,8 +286,9 @@ class ProfileSpline {
   /// circular roller), negative where concave (a groove).
   double CurvatureAt(double s) const;
 
-  /// Every s in [0, length()] with y(s) = y, ascending; empty outside the profile. A table of
-  /// the knot intervals by y (built once) limits the search to the intervals that can reach y.
+  /// Every s in [0, length()] with y(s) = y, ascending, roots less than 1e-9 mm apart counted
+  /// once; empty outside the profile. A table of the knot intervals by y (built once) limits the
+  /// search to the intervals that can reach y.
   std::vector<double> SAtY(double y) const;
   /// z at lateral position y (see ProfileHeight for the statuses).
   ProfileHeight ZAtY(double y) const;
