@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace wrc::wr {
 namespace {
@@ -39,7 +40,8 @@ bool Locate(const PlacedWheel& wheel, double y, double z_rail, double x_guess, L
 
 }  // namespace
 
-ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step) {
+ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step,
+                            double reach) {
   ContactSearch search;
   // Equal steps of at most `step` that end exactly on the profile's last point, so that a
   // symmetric profile pair gives a symmetric search.
@@ -47,7 +49,6 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
   step = rail.length() / n;
   search.step = step;
   search.samples.resize(n + 1);
-  double x_guess = 0.0;
   for (int k = 0; k <= n; ++k) {
     LocusSample& sample = search.samples[k];
     sample.s = std::min(k * step, rail.length());
@@ -55,8 +56,50 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
     sample.y = p(0);
     sample.z = p(1);
     sample.alpha = rail.InclinationAt(sample.s);
+    sample.gap = std::numeric_limits<double>::infinity();
+  }
+  // Coarse pass on every kCoarse-th sample, then the fine samples only between coarse ones
+  // that may come within `reach` of the smallest gap (no z of an fz iteration goes deeper):
+  // most of the profile pair is far apart, and locating the wheel there is most of the cost.
+  // The gap between two coarse samples cannot dip below the lower end by more than
+  // h²/8·|g''| = 0.125 mm for h = kCoarse·step <= 1 mm and |g''| <= 1/mm (radii of 1 mm in
+  // both profiles at once), so kDipMargin covers any real profile pair.
+  constexpr int kCoarse = 20;
+  constexpr double kDipMargin = 0.5;
+  std::vector<int> coarse;
+  for (int k = 0; k < n; k += kCoarse) coarse.push_back(k);
+  coarse.push_back(n);
+  double x_guess = 0.0;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const int k : coarse) {
+    LocusSample& sample = search.samples[k];
     sample.valid = Locate(wheel, sample.y, sample.z, x_guess, sample);
-    if (sample.valid) x_guess = sample.x;
+    if (sample.valid) {
+      x_guess = sample.x;
+      smallest = std::min(smallest, sample.gap);
+    }
+  }
+  const double threshold = smallest + reach + kDipMargin;
+  for (std::size_t c = 0; c + 1 < coarse.size(); ++c) {
+    const LocusSample& a = search.samples[coarse[c]];
+    const LocusSample& b = search.samples[coarse[c + 1]];
+    const bool near = (a.valid && a.gap < threshold) || (b.valid && b.gap < threshold) ||
+                      a.valid != b.valid;  // the wheel's edge: locate it finely
+    if (!near) continue;
+    x_guess = a.valid ? a.x : b.x;
+    for (int k = coarse[c] + 1; k < coarse[c + 1]; ++k) {
+      LocusSample& sample = search.samples[k];
+      sample.valid = Locate(wheel, sample.y, sample.z, x_guess, sample);
+      if (sample.valid) x_guess = sample.x;
+    }
+  }
+  // Coarse samples far from contact stay as located; the fine ones there keep valid = false.
+  for (const int k : coarse) {
+    LocusSample& sample = search.samples[k];
+    if (sample.valid && sample.gap >= threshold) {
+      sample.valid = false;
+      sample.gap = std::numeric_limits<double>::infinity();
+    }
   }
   return search;
 }

@@ -19,7 +19,8 @@ struct LocusSample {
   double x = 0.0;           ///< Contact locus: x of the smallest gap, mm.
   double gap = 0.0;         ///< Smallest vertical gap at this lateral position, mm.
   double curvature = 0.0;   ///< d²gap/dx² at the locus, 1/mm (> 0).
-  bool valid = false;       ///< The wheel lies above this rail point.
+  bool valid = false;       ///< The wheel lies above this rail point and comes within the
+                            ///< search's reach of the rail (gap = +inf otherwise).
 };
 
 struct ContactSearch {
@@ -27,8 +28,10 @@ struct ContactSearch {
   double step = 0.0;                 ///< Arc-length step, mm.
 };
 
-/// Samples the rail at `step` and finds the contact locus against the wheel.
-ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step);
+/// Samples the rail at `step` and finds the contact locus against the wheel wherever the gap
+/// comes within `reach` (mm) of the smallest gap; samples further away are left invalid.
+ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step,
+                            double reach);
 
 /// A contact patch: a run of samples [first, last] (indices into the search) that holds one or
 /// more interpenetration regions closer than the combine distance.

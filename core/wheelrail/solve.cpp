@@ -204,7 +204,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   {
     const auto t_search = Clock::now();
     const PlacedWheel wheel0(pb.wheel_spline, c.wheelset, pb.kin);
-    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep);
+    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, options.max_interpenetration);
     timings.search = since(t_search);
   }
   bool any_valid = false;
