@@ -107,6 +107,18 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   ws.py_ext.assign(ne, 0.0);
   ws.ux_ext.resize(ne);
   ws.uy_ext.resize(ne);
+  if (options.warm_start && sol.px.size() == n && sol.py.size() == n) {
+    // Only elements in contact carry traction; the sweep never visits the others.
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t I = g.index(i, j);
+        if (pb.pressure[I] > 0.0) {
+          ws.px_ext[static_cast<std::size_t>(i) + static_cast<std::size_t>(nxe) * j] = sol.px[I];
+          ws.py_ext[static_cast<std::size_t>(i) + static_cast<std::size_t>(nxe) * j] = sol.py[I];
+        }
+      }
+    }
+  }
   sol.px.assign(n, 0.0);
   sol.py.assign(n, 0.0);
   sol.sx.assign(n, 0.0);

@@ -28,7 +28,7 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
   // length >= 2n − 1; rounded up to a size FFTW transforms fast.
   const int n1 = fftw::Plan2d::FastSize(2 * grid_.nx - 1);
   const int n0 = fftw::Plan2d::FastSize(2 * grid_.ny - 1);
-  plan_ = std::make_unique<fftw::Plan2d>(n0, n1);
+  plan_ = fftw::Plan2d::Shared(n0, n1);
 
   fftw::RealBuffer kernel(plan_->real_size());
   fftw::ComplexBuffer spectrum(plan_->complex_size());

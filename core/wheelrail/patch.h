@@ -2,10 +2,28 @@
 // Solution of one contact patch: reference, potential contact area, undeformed distance, rigid
 // slip, normal and tangential problems, and the resulting forces (paper Fig. 3, steps 1–3).
 
+#include <memory>
+#include <vector>
+
 #include "core/wheelrail/contact_search.h"
 #include "wrc/wheelrail.h"
 
 namespace wrc::wr {
+
+/// What one patch keeps between the solves of a vertical force iteration (the same patch at
+/// slightly different wheelset heights): the influence operators of its solve box, which are
+/// reused while the box keeps its size, and the last solution as a warm start.
+struct PatchCache {
+  std::unique_ptr<FftInfluenceOperator> normal_operator;
+  std::unique_ptr<SteadyRollingOperator> rolling_operator;
+  NormalWorkspace normal_workspace;
+  TangentialWorkspace tangential_workspace;
+  /// Last solve box, relative to its patch reference, and the solutions found on it.
+  Grid box;
+  NormalSolution normal;
+  TangentialSolution tangential;
+  bool has_normal = false, has_tangential = false;
+};
 
 /// Everything a patch needs besides its extent.
 struct PatchContext {
@@ -22,6 +40,9 @@ struct PatchContext {
   bool tangential = true;
   /// Stage timings are added here (not owned).
   WheelRailTimings* timings = nullptr;
+  /// Operators and warm starts carried over from the previous solve of this patch (not owned;
+  /// null solves from scratch).
+  PatchCache* cache = nullptr;
 };
 
 /// Solves one patch with the planar contact approach (paper §2.6, Table 1 methods 2–8).

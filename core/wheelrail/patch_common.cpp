@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "wrc/errors.h"
 
@@ -77,6 +79,79 @@ Grid PatchGrid(double dx, double ds, double x_min, double x_max, double s_min, d
   return g;
 }
 
+namespace {
+
+// Elements kept around the interpenetration in the solve box: one would do for the normal
+// problem; two more leave the tangential sweep room downstream of the contact.
+constexpr int kBoxMargin = 3;
+// A new operator is made this much larger than its box needs (capped by the potential contact
+// area), so that the slightly larger boxes of the next steps of a force iteration reuse it.
+constexpr double kBoxGrowth = 1.25;
+
+// The solve box of a patch: the part of the potential contact area that can carry pressure.
+// In contact the deformed distance h + u_n vanishes with u_n > 0 (the Boussinesq kernel is
+// positive and so are the pressures), so contact needs h < 0: elements outside the bounding box
+// of the interpenetration stay exterior for identical materials (no normal–tangential coupling)
+// and the box gives the same solution as the whole area at a fraction of the cost (at a deep
+// flange contact the area is 10x the contact). Box dimensions of a cached operator are kept when
+// they fit, so the operator is reused.
+struct SolveBox {
+  int i0 = 0, j0 = 0, nx = 0, ny = 0;
+};
+
+SolveBox ChooseBox(const Grid& grid, const std::vector<double>& h, const PatchCache* cache,
+                   bool& reuse) {
+  int i_lo = grid.nx, i_hi = -1, j_lo = grid.ny, j_hi = -1;
+  for (int j = 0; j < grid.ny; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      if (h[grid.index(i, j)] < 0.0) {
+        i_lo = std::min(i_lo, i);
+        i_hi = std::max(i_hi, i);
+        j_lo = std::min(j_lo, j);
+        j_hi = std::max(j_hi, j);
+      }
+    }
+  }
+  reuse = false;
+  if (i_hi < 0) return {0, 0, grid.nx, grid.ny};  // no interpenetration: nothing to crop to
+  const int need_x = std::min(grid.nx, i_hi - i_lo + 1 + 2 * kBoxMargin);
+  const int need_y = std::min(grid.ny, j_hi - j_lo + 1 + 2 * kBoxMargin);
+  SolveBox box;
+  const FftInfluenceOperator* op = cache ? cache->normal_operator.get() : nullptr;
+  if (op && op->grid().dx == grid.dx && op->grid().dy == grid.dy && op->grid().nx >= need_x &&
+      op->grid().nx <= grid.nx && op->grid().ny >= need_y && op->grid().ny <= grid.ny) {
+    box.nx = op->grid().nx;
+    box.ny = op->grid().ny;
+    reuse = true;
+  } else {
+    box.nx = std::min(grid.nx, static_cast<int>(std::ceil(kBoxGrowth * need_x)));
+    box.ny = std::min(grid.ny, static_cast<int>(std::ceil(kBoxGrowth * need_y)));
+  }
+  // Centred on the interpenetration, shifted to lie inside the potential contact area.
+  box.i0 = std::clamp((i_lo + i_hi + 1 - box.nx) / 2, 0, grid.nx - box.nx);
+  box.j0 = std::clamp((j_lo + j_hi + 1 - box.ny) / 2, 0, grid.ny - box.ny);
+  return box;
+}
+
+// Values of `from` (on grid `a`) at the elements of grid `b` with the same centre (offsets
+// rounded to whole elements); zero where `a` has none.
+void Remap(const Grid& a, const std::vector<double>& from, const Grid& b, std::vector<double>& to) {
+  to.assign(b.size(), 0.0);
+  if (from.size() != a.size()) return;
+  const int di = static_cast<int>(std::lround((b.x0 - a.x0) / a.dx));
+  const int dj = static_cast<int>(std::lround((b.y0 - a.y0) / a.dy));
+  for (int j = 0; j < b.ny; ++j) {
+    const int ja = j + dj;
+    if (ja < 0 || ja >= a.ny) continue;
+    for (int i = 0; i < b.nx; ++i) {
+      const int ia = i + di;
+      if (ia >= 0 && ia < a.nx) to[b.index(i, j)] = from[a.index(ia, ja)];
+    }
+  }
+}
+
+}  // namespace
+
 void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
                  const std::vector<double>& wx, const std::vector<double>& wy,
                  const std::vector<double>& mu, PatchResult& result) {
@@ -97,13 +172,49 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
   };
+  PatchCache local;
+  PatchCache& cache = ctx.cache ? *ctx.cache : local;
   const auto t0 = Clock::now();
-  const FftInfluenceOperator op(grid, ctx.material, {InfluenceComponent::kNN});
-  const auto t1 = Clock::now();
-  NormalWorkspace nws;
+  bool reuse = false;
+  const SolveBox sb = ChooseBox(grid, h, ctx.cache, reuse);
+  Grid box = grid;
+  if (std::getenv("WRC_TRACE_BOX")) std::fprintf(stderr, "grid %dx%d box %dx%d at %d,%d reuse %d\n", grid.nx, grid.ny, sb.nx, sb.ny, sb.i0, sb.j0, int(reuse));
+  box.nx = sb.nx;
+  box.ny = sb.ny;
+  box.x0 = grid.x(sb.i0);
+  box.y0 = grid.y(sb.j0);
+  auto crop = [&](const std::vector<double>& v) {
+    std::vector<double> out(box.size());
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) out[box.index(i, j)] = v[grid.index(sb.i0 + i, sb.j0 + j)];
+    }
+    return out;
+  };
+  // Back onto the potential contact area, `outside` where the box does not reach.
+  auto expand = [&](const std::vector<double>& v, const std::vector<double>* outside) {
+    std::vector<double> out = outside ? *outside : std::vector<double>(grid.size(), 0.0);
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
+    }
+    return out;
+  };
+  if (!reuse) {
+    cache.normal_operator =
+        std::make_unique<FftInfluenceOperator>(box, ctx.material, std::vector<InfluenceComponent>{InfluenceComponent::kNN});
+    cache.rolling_operator.reset();
+  }
+  const FftInfluenceOperator& op = *cache.normal_operator;
+  const std::vector<double> h_box = crop(h);
+  // Warm start: the previous solution of this patch moved onto this box.
   NormalSolution ns;
+  NormalOptions normal_options = ctx.options->normal;
+  if (cache.has_normal) {
+    Remap(cache.box, cache.normal.pressure, box, ns.pressure);
+    normal_options.warm_start = true;
+  }
+  const auto t1 = Clock::now();
   const NormalSummary normal =
-      SolveNormal(op, h, NormalLoad::Approach(0.0), ctx.options->normal, nws, ns);
+      SolveNormal(op, h_box, NormalLoad::Approach(0.0), normal_options, cache.normal_workspace, ns);
   const auto t2 = Clock::now();
   if (ctx.timings) {
     ctx.timings->influence += seconds(t0, t1);
@@ -111,7 +222,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   }
   result.normal_iterations = normal.iterations;
   result.status = normal.status;
-  result.pn = std::move(ns.pressure);
+  result.pn = expand(ns.pressure, nullptr);
   result.pmax = ns.pmax;
   result.n_contact = ns.n_contact;
 
@@ -122,34 +233,70 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
       if (result.pn[k] > 0.0) result.state[k] = ElementState::kSlip;  // frictionless: all slip
     }
     result.n_slip = result.n_contact;
+    if (normal.status != SolverStatus::kNotConverged) {
+      cache.normal = std::move(ns);
+      cache.has_normal = true;
+      if (!(cache.box.nx == box.nx && cache.box.ny == box.ny && cache.box.x0 == box.x0 &&
+            cache.box.y0 == box.y0)) {
+        // The tangential warm start belongs to the old box.
+        std::vector<double> moved;
+        Remap(cache.box, cache.tangential.px, box, moved);
+        cache.tangential.px.swap(moved);
+        Remap(cache.box, cache.tangential.py, box, moved);
+        cache.tangential.py.swap(moved);
+      }
+      cache.box = box;
+    }
     return;
   }
   const auto t3 = Clock::now();
-  const SteadyRollingOperator rolling(grid, ctx.material);
+  if (!cache.rolling_operator) {
+    cache.rolling_operator = std::make_unique<SteadyRollingOperator>(box, ctx.material);
+  }
+  const SteadyRollingOperator& rolling = *cache.rolling_operator;
   const auto t4 = Clock::now();
   TangentialProblem tp;
-  tp.pressure = result.pn;
-  tp.mu = mu;
-  tp.wx = wx;
-  tp.wy = wy;
+  tp.pressure = ns.pressure;
+  tp.mu = mu.size() == grid.size() ? crop(mu) : mu;  // or one value for the whole patch
+  tp.wx = crop(wx);
+  tp.wy = crop(wy);
   result.wx = wx;
   result.ws = wy;
-  TangentialWorkspace tws;
   TangentialSolution ts;
-  const TangentialSummary summary = SolveTangential(rolling, tp, ctx.options->tangential, tws, ts);
+  TangentialOptions tangential_options = ctx.options->tangential;
+  if (cache.has_tangential) {
+    Remap(cache.box, cache.tangential.px, box, ts.px);
+    Remap(cache.box, cache.tangential.py, box, ts.py);
+    tangential_options.warm_start = true;
+  }
+  const TangentialSummary summary =
+      SolveTangential(rolling, tp, tangential_options, cache.tangential_workspace, ts);
   result.tangential_iterations = summary.iterations;
   if (ctx.timings) {
     ctx.timings->influence += seconds(t3, t4);
     ctx.timings->tangential += seconds(t4, Clock::now());
   }
   if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
-  result.px = std::move(ts.px);
-  result.ps = std::move(ts.py);
-  result.sx = std::move(ts.sx);
-  result.ss = std::move(ts.sy);
-  result.state = std::move(ts.state);
+  result.px = expand(ts.px, nullptr);
+  result.ps = expand(ts.py, nullptr);
+  // Outside the box nothing is in contact; the slip reported there is the rigid slip.
+  result.sx = expand(ts.sx, &wx);
+  result.ss = expand(ts.sy, &wy);
+  result.state.assign(grid.size(), ElementState::kExterior);
+  for (int j = 0; j < box.ny; ++j) {
+    for (int i = 0; i < box.nx; ++i) {
+      result.state[grid.index(sb.i0 + i, sb.j0 + j)] = ts.state[box.index(i, j)];
+    }
+  }
   result.n_slip = ts.n_slip;
   result.n_adhesion = ts.n_adhesion;
+  if (normal.status != SolverStatus::kNotConverged &&
+      summary.status != SolverStatus::kNotConverged) {
+    cache.normal = std::move(ns);
+    cache.tangential = std::move(ts);
+    cache.has_normal = cache.has_tangential = true;
+    cache.box = box;
+  }
 }
 
 void FillReferenceOutputs(const PatchContext& ctx, const PatchReference& ref,

@@ -1,5 +1,7 @@
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <utility>
 
@@ -53,6 +55,33 @@ struct Problem {
   ContactSearch search;    // at kin.z = 0
   CombinedElasticity material;
   double mirror = 1.0;  // −1 for a left case solved as its mirror image
+  // Per patch, keyed by the rail arc length at the middle of its extent: operators and warm
+  // starts for the next solve of the same patch at another wheelset height.
+  mutable std::vector<std::pair<double, std::unique_ptr<wr::PatchCache>>> caches;
+
+  // The nearest cache not yet taken by another patch of this solve (`taken` has one flag per
+  // cache), or a new one.
+  wr::PatchCache* CacheFor(const PatchExtent& e, std::vector<bool>& taken) const {
+    // A patch moves by far less than this along the rail between the steps of an fz iteration.
+    constexpr double kSameArcLength = 5.0;
+    const double key = 0.5 * (search.samples[e.first].s + search.samples[e.last].s);
+    int best = -1;
+    for (std::size_t k = 0; k < caches.size(); ++k) {
+      const double d = std::fabs(caches[k].first - key);
+      if (!taken[k] && d < kSameArcLength &&
+          (best < 0 || d < std::fabs(caches[best].first - key))) {
+        best = static_cast<int>(k);
+      }
+    }
+    if (best < 0) {
+      caches.emplace_back(key, std::make_unique<wr::PatchCache>());
+      taken.push_back(false);
+      best = static_cast<int>(caches.size()) - 1;
+    }
+    taken[best] = true;
+    caches[best].first = key;
+    return caches[best].second.get();
+  }
 };
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
@@ -89,7 +118,9 @@ WheelRailResult SolveAt(const Problem& pb, double z, bool tangential, WheelRailT
   }
   const auto extents = wr::FindPatches(pb.search, z, pb.c->method.combine_distance);
   const Eigen::Vector3d rail_origin(0.0, pb.rail->origin()(0), pb.rail->origin()(1));
+  std::vector<bool> taken(pb.caches.size(), false);
   for (const PatchExtent& e : extents) {
+    ctx.cache = pb.CacheFor(e, taken);
     PatchResult p = pb.c->method.reference == ReferenceSurface::kCurved
                         ? wr::SolveCurvedPatch(ctx, e)
                         : wr::SolvePlanarPatch(ctx, e);
@@ -233,7 +264,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     auto normal_force = [&](double z) {
       ++iterations;
       try {
-        return SolveAt(pb, z, false, &timings).force_T(2);
+        const double f = SolveAt(pb, z, false, &timings).force_T(2);
+        if (std::getenv("WRC_TRACE_FZ")) std::fprintf(stderr, "normal z=%.12g f=%.10g\n", z, f);
+        return f;
       } catch (const InputError& e) {
         // The search for z went beyond elastic contact: the force cannot be carried.
         throw InputError(c.source_name + ": state.fz = " + std::to_string(fz) +
@@ -309,6 +342,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
         ++iterations;
         result = SolveAt(pb, z, true, &timings);
         const double f = result.force_T(2);
+        if (std::getenv("WRC_TRACE_FZ")) std::fprintf(stderr, "full z=%.12g f=%.10g\n", z, f);
         met = std::fabs(f - fz) <= tolerance;
         if (pass > 0 && z != z_last) {
           const double secant = (f - f_last) / (z - z_last);

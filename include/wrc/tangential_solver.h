@@ -46,6 +46,10 @@ struct TangentialOptions {
   /// 1e-11 solve (CONTACT prints 4 digits) with 25 % fewer sweeps than 1e-9.
   double tolerance = 1e-7;
   int max_iterations = 5000;
+  /// Start from the tractions already in TangentialSolution::px/py when their size fits the
+  /// grid (set to zero outside the contact), e.g. the previous solve of a force iteration;
+  /// otherwise from zero tractions.
+  bool warm_start = false;
 };
 
 /// Input of a tangential solve on the operator's grid.
