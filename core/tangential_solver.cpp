@@ -78,12 +78,8 @@ LocalResult SolveLocal(double sfx, double sfy, double kx, double ky, double boun
 SteadyRollingOperator::SteadyRollingOperator(const Grid& grid, const CombinedElasticity& material)
     : grid_(grid), material_(material) {
   grid_.Validate();
-  if (material_.kappa != 0.0) {
-    // The coupled normal–tangential iteration for dissimilar materials is not implemented;
-    // refusing is better than silently ignoring the coupling.
-    throw std::invalid_argument(
-        "steady rolling with dissimilar materials (K != 0) is not supported yet");
-  }
+  // K != 0 is accepted: this operator holds the xx/yy/xy blocks only; the normal–tangential
+  // coupling of dissimilar bodies enters through SolveCoupled (coupled_solver.h).
   extended_ = std::make_unique<FftInfluenceOperator>(
       Extended(grid_), material_,
       std::vector<InfluenceComponent>{InfluenceComponent::kXX, InfluenceComponent::kYY,
