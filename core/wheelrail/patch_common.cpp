@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "wrc/coupled_solver.h"
 #include "wrc/errors.h"
 
 namespace wrc::wr {
@@ -100,7 +101,7 @@ struct SolveBox {
 };
 
 SolveBox ChooseBox(const Grid& grid, const std::vector<double>& h, const PatchCache* cache,
-                   bool& reuse) {
+                   bool use_box, bool& reuse) {
   int i_lo = grid.nx, i_hi = -1, j_lo = grid.ny, j_hi = -1;
   for (int j = 0; j < grid.ny; ++j) {
     for (int i = 0; i < grid.nx; ++i) {
@@ -113,7 +114,11 @@ SolveBox ChooseBox(const Grid& grid, const std::vector<double>& h, const PatchCa
     }
   }
   reuse = false;
-  if (i_hi < 0) return {0, 0, grid.nx, grid.ny};  // no interpenetration: nothing to crop to
+  if (i_hi < 0 || !use_box) {  // no interpenetration (or no box wanted): the whole area
+    i_lo = j_lo = 0;
+    i_hi = grid.nx - 1;
+    j_hi = grid.ny - 1;
+  }
   const int need_x = std::min(grid.nx, i_hi - i_lo + 1 + 2 * kBoxMargin);
   const int need_y = std::min(grid.ny, j_hi - j_lo + 1 + 2 * kBoxMargin);
   SolveBox box;
@@ -152,6 +157,53 @@ void Remap(const Grid& a, const std::vector<double>& from, const Grid& b, std::v
 
 }  // namespace
 
+// Dissimilar bodies (K != 0): normal and tangential problems coupled (Panagiotopoulos process,
+// coupled_solver.h) on the whole potential contact area. The tangential tractions then move
+// the normal displacements, so the interpenetration no longer bounds the contact and the solve
+// box of the uncoupled path would not be exact.
+namespace {
+void SolveCoupledOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
+                        const std::vector<double>& wx, const std::vector<double>& wy,
+                        const std::vector<double>& mu, PatchResult& result) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const CoupledContactOperator op(grid, ctx.material);
+  const auto t1 = Clock::now();
+  CoupledProblem problem;
+  problem.h = h;
+  problem.load = NormalLoad::Approach(0.0);
+  problem.mu = mu;
+  problem.wx = wx;
+  problem.wy = wy;
+  CoupledOptions options;
+  options.normal = ctx.options->normal;
+  options.tangential = ctx.options->tangential;
+  CoupledWorkspace ws;
+  CoupledSolution sol;
+  const CoupledSummary summary = SolveCoupled(op, problem, options, ws, sol);
+  if (ctx.timings) {
+    ctx.timings->influence += std::chrono::duration<double>(t1 - t0).count();
+    ctx.timings->tangential += std::chrono::duration<double>(Clock::now() - t1).count();
+  }
+  result.normal_iterations = summary.normal_iterations;
+  result.tangential_iterations = summary.tangential_iterations;
+  result.status = summary.status;
+  result.pn = std::move(sol.normal.pressure);
+  result.pmax = sol.normal.pmax;
+  result.n_contact = sol.normal.n_contact;
+  result.wx = wx;
+  result.ws = wy;
+  result.px = std::move(sol.tangential.px);
+  result.ps = std::move(sol.tangential.py);
+  result.sx = std::move(sol.tangential.sx);
+  result.ss = std::move(sol.tangential.sy);
+  result.state = std::move(sol.tangential.state);
+  result.n_slip = sol.tangential.n_slip;
+  result.n_adhesion = sol.tangential.n_adhesion;
+}
+
+}  // namespace
+
 void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
                  const std::vector<double>& wx, const std::vector<double>& wy,
                  const std::vector<double>& mu, PatchResult& result) {
@@ -172,11 +224,15 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
   };
+  if (ctx.tangential && ctx.material.kappa != 0.0) {
+    SolveCoupledOnGrid(ctx, grid, h, wx, wy, mu, result);
+    return;
+  }
   PatchCache local;
   PatchCache& cache = ctx.cache ? *ctx.cache : local;
   const auto t0 = Clock::now();
   bool reuse = false;
-  const SolveBox sb = ChooseBox(grid, h, ctx.cache, reuse);
+  const SolveBox sb = ChooseBox(grid, h, ctx.cache, ctx.options->solve_box, reuse);
   Grid box = grid;
   if (std::getenv("WRC_TRACE_BOX")) std::fprintf(stderr, "grid %dx%d box %dx%d at %d,%d reuse %d\n", grid.nx, grid.ny, sb.nx, sb.ny, sb.i0, sb.j0, int(reuse));
   box.nx = sb.nx;

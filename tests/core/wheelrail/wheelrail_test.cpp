@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "wrc/case.h"
 #include "wrc/errors.h"
@@ -125,6 +126,52 @@ TEST(WheelRail, ForceLocationLeavesOnlyAParallelMoment) {
     weighted += p.force_T(2) * p.reference_T(1);
   }
   EXPECT_NEAR(r.force_location_T(1), weighted / sum, 0.5);
+}
+
+// The solve box (the bounding box of the interpenetration) gives the solution of the whole
+// potential contact area: contact needs h < 0 for identical bodies. Three patches at y = 6 mm,
+// a two-patch flange contact with yaw on the heavy-haul pair.
+TEST(WheelRail, SolveBoxGivesTheSolutionOfTheWholeArea) {
+  std::vector<Case> cases = {Manchester(6.0, ReferenceSurface::kCurved),
+                             LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" /
+                                      "heavy_haul" / "heavy_haul_z1.162.toml")};
+  for (const Case& c : cases) {
+    WheelRailOptions whole;
+    whole.solve_box = false;
+    const WheelRailResult a = SolveWheelRail(c);
+    const WheelRailResult b = SolveWheelRail(c, whole);
+    ASSERT_EQ(a.status, SolverStatus::kConverged) << c.source_name;
+    ASSERT_EQ(b.status, SolverStatus::kConverged) << c.source_name;
+    ASSERT_EQ(a.patches.size(), b.patches.size()) << c.source_name;
+    // Both are converged to the solvers' tolerances (1e-8 normal, 1e-7 tangential relative),
+    // from different starting points: 1e-6 of the load leaves room for that and nothing else.
+    const double load = b.force_T.norm();
+    EXPECT_LT((a.force_T - b.force_T).norm(), 1e-6 * load) << c.source_name;
+    for (std::size_t k = 0; k < a.patches.size(); ++k) {
+      EXPECT_EQ(a.patches[k].n_contact, b.patches[k].n_contact) << c.source_name;
+      EXPECT_EQ(a.patches[k].n_slip, b.patches[k].n_slip) << c.source_name;
+      EXPECT_EQ(a.patches[k].n_pot, b.patches[k].n_pot) << c.source_name;
+    }
+  }
+}
+
+// Dissimilar bodies (K != 0) are solved with the normal–tangential coupling. Swapping the two
+// materials keeps the combined stiffness and flips the sign of K: both solves converge and meet
+// fz, and their creep forces differ (by the coupling) but only slightly.
+TEST(WheelRail, DissimilarBodiesAreCoupled) {
+  Case soft_wheel = Manchester(2.0, ReferenceSurface::kCurved);
+  soft_wheel.wheel_material = {60000.0, 0.33};
+  Case soft_rail = soft_wheel;
+  std::swap(soft_rail.rail_material, soft_rail.wheel_material);
+  const WheelRailResult a = SolveWheelRail(soft_wheel);
+  const WheelRailResult b = SolveWheelRail(soft_rail);
+  for (const WheelRailResult* r : {&a, &b}) {
+    ASSERT_EQ(r->status, SolverStatus::kConverged);
+    EXPECT_NEAR(r->force_T(2), 10000.0, 1e-6 * 10000.0);
+  }
+  const double difference = std::fabs(a.force_T(0) - b.force_T(0));
+  EXPECT_GT(difference, 1e-4 * std::fabs(a.force_T(0)));
+  EXPECT_LT(difference, 0.1 * std::fabs(a.force_T(0)));
 }
 
 }  // namespace
