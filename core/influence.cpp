@@ -131,10 +131,62 @@ std::shared_ptr<const CoefficientTable> Table(InfluenceComponent c, const Combin
   table->half_y = half_y;
   table->values.resize(static_cast<std::size_t>(2 * half_x + 1) *
                        static_cast<std::size_t>(2 * half_y + 1));
+  // Each coefficient is the corner sum of an antiderivative F over its element (Eq. of
+  // RectangleIntegral); neighbouring elements share corners, and F is odd or even in X and in Y,
+  // so F is evaluated once per corner of one quadrant, (half_x + 1)(half_y + 1) times instead of
+  // 4 per coefficient: 16x fewer logarithms (they were a tenth of a flange-contact solve).
+  const double scale = 1.0 / (kPi * m.shear_modulus);
+  const double nu = m.poisson;
+  double (*anti_a)(double, double) = AntiInverseR;
+  double (*anti_b)(double, double) = nullptr;
+  double weight_a = scale * (1.0 - nu), weight_b = 0.0;
+  bool odd_x = true, odd_y = true;
+  switch (c) {
+    case InfluenceComponent::kNN:
+      break;
+    case InfluenceComponent::kXX:
+      anti_b = AntiXXOverR3;
+      weight_b = scale * nu;
+      break;
+    case InfluenceComponent::kYY:
+      anti_b = AntiYYOverR3;
+      weight_b = scale * nu;
+      break;
+    case InfluenceComponent::kXY:
+      anti_a = AntiXYOverR3;  // −r: even in X and Y
+      weight_a = scale * nu;
+      odd_x = odd_y = false;
+      break;
+    case InfluenceComponent::kXN:
+    case InfluenceComponent::kNX:
+      anti_a = AntiXOverR2;  // even in X, odd in Y
+      weight_a = (c == InfluenceComponent::kXN ? -scale : scale) * m.kappa;
+      odd_x = false;
+      break;
+  }
+  const int cx = half_x + 1, cy = half_y + 1;
+  std::vector<double> quadrant(static_cast<std::size_t>(cx) * cy);
+  for (int b = 0; b < cy; ++b) {
+    const double Y = (b + 0.5) * dy;
+    for (int a = 0; a < cx; ++a) {
+      const double X = (a + 0.5) * dx;
+      double f = weight_a * anti_a(X, Y);
+      if (anti_b) f += weight_b * anti_b(X, Y);
+      quadrant[static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b] = f;
+    }
+  }
+  // F at the corner ((i + ½)·dx, (j + ½)·dy) for any integers i, j.
+  auto corner = [&](int i, int j) {
+    const int a = i >= 0 ? i : -i - 1, b = j >= 0 ? j : -j - 1;
+    const double f = quadrant[static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b];
+    const bool negate = (odd_x && i < 0) != (odd_y && j < 0);
+    return negate ? -f : f;
+  };
   std::size_t k = 0;
   for (int dj = -half_y; dj <= half_y; ++dj) {
     for (int di = -half_x; di <= half_x; ++di) {
-      table->values[k++] = RectangleInfluence(c, m, di * dx, dj * dy, 0.5 * dx, 0.5 * dy);
+      table->values[k++] =
+          corner(di, dj) - corner(di - 1, dj) - corner(di, dj - 1) + corner(di - 1, dj - 1);
     }
   }
   std::lock_guard<std::mutex> lock(mutex);
