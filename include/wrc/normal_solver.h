@@ -53,7 +53,7 @@ struct NormalSummary {
 /// Scratch memory for SolveNormal, caller-owned so that repeated solves do not allocate.
 struct NormalWorkspace {
   ConvolutionWorkspace convolution;
-  std::vector<double> gap, direction, response, previous;
+  std::vector<double> gap, direction, response, previous, displacement;
 };
 
 /// Solves the normal problem for undeformed distance `h` (excluding the approach: the gap is
