@@ -91,6 +91,19 @@ void AddRowSlipChange(const double* __restrict xx0, const double* __restrict xx1
   }
 }
 
+// One kernel's slip change along a row: s += [[xx, xy], [xy, yy]]·(ax, ay).
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void AddRowSlipTerm(const double* __restrict xx, const double* __restrict yy,
+                    const double* __restrict xy, double ax, double ay, int count,
+                    double* __restrict sx_row, double* __restrict sy_row) {
+  for (int t = 0; t < count; ++t) {
+    sx_row[t] += xx[t] * ax + xy[t] * ay;
+    sy_row[t] += xy[t] * ax + yy[t] * ay;
+  }
+}
+
 }  // namespace
 
 SteadyRollingOperator::SteadyRollingOperator(const Grid& grid, const CombinedElasticity& material)
@@ -231,6 +244,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       // ending the cumulative sum at the row's last contact element, while each one costs an
       // update of the slip field, so only kSinkElements of them are used.
       const int b = std::max(box_i0, row_lo[j - box_j0] - kSinkElements);
+      double row_change_x = 0.0, row_change_y = 0.0;
       for (int i = row_hi[j - box_j0]; i >= b; --i) {
         const std::size_t I = g.index(i, j);
         const std::size_t E = ext_index(i, j);
@@ -258,20 +272,39 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
         }
         // Slip change at (k, l): Σ_(m=b..i) [A(k−m) − A(k+1−m)]·Δ/δq = [A(k−i) − A(k−b+1)]·Δ/δq.
         // Only the slip of elements in contact is read before the next FFT refresh, so only
-        // the contact range of each row is corrected; the coefficients of a row are contiguous.
-        for (int l = box_j0; l <= box_j1; ++l) {
+        // the contact range of each row is corrected (its coefficients are contiguous), and
+        // only in this row and the rows after it: rows already swept are not read again before
+        // the refresh. This row needs both terms at once (its next element reads them); for
+        // later rows the A(k−b+1) term of every update of this row is one kernel times the sum
+        // of the changes, added once when the row is done.
+        row_change_x += dpx;
+        row_change_y += dpy;
+        const double ax = dpx * inv_dq, ay = dpy * inv_dq;
+        for (int l = j; l <= box_j1; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
           if (hi < lo) continue;
           const int dj = l - j;
-          const std::size_t a0 = coeff_index(lo - i, dj), a1 = coeff_index(lo - b + 1, dj);
-          const double* xx0 = xx_values + a0;
-          const double* xx1 = xx_values + a1;
-          const double* yy0 = yy_values + a0;
-          const double* yy1 = yy_values + a1;
-          const double* xy0 = xy_values + a0;
-          const double* xy1 = xy_values + a1;
-          AddRowSlipChange(xx0, xx1, yy0, yy1, xy0, xy1, dpx * inv_dq, dpy * inv_dq, hi - lo + 1,
-                           ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
+          const std::size_t a0 = coeff_index(lo - i, dj);
+          double* sx_row = ws.sx_box.data() + box_index(lo, l);
+          double* sy_row = ws.sy_box.data() + box_index(lo, l);
+          if (l == j) {
+            const std::size_t a1 = coeff_index(lo - b + 1, dj);
+            AddRowSlipChange(xx_values + a0, xx_values + a1, yy_values + a0, yy_values + a1,
+                             xy_values + a0, xy_values + a1, ax, ay, hi - lo + 1, sx_row, sy_row);
+          } else {
+            AddRowSlipTerm(xx_values + a0, yy_values + a0, xy_values + a0, ax, ay, hi - lo + 1,
+                           sx_row, sy_row);
+          }
+        }
+      }
+      if (row_change_x != 0.0 || row_change_y != 0.0) {
+        const double ax = -row_change_x * inv_dq, ay = -row_change_y * inv_dq;
+        for (int l = j + 1; l <= box_j1; ++l) {
+          const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
+          if (hi < lo) continue;
+          const std::size_t a1 = coeff_index(lo - b + 1, l - j);
+          AddRowSlipTerm(xx_values + a1, yy_values + a1, xy_values + a1, ax, ay, hi - lo + 1,
+                         ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
         }
       }
     }

@@ -91,8 +91,9 @@ struct TangentialWorkspace {
 /// derivative moves from u onto p), whose diagonal dominates; Gauss–Seidel on p itself cycles,
 /// because its upstream coupling equals minus its own stiffness. Every element update solves
 /// its local Coulomb problem exactly (adhesion, or slip with the traction on the bound, opposite
-/// to the slip), and the slip of the contact's bounding box is corrected after each update;
-/// once per sweep it is recomputed by FFT to stop round-off drift. Throws
+/// to the slip), and the slip of the contact elements still to be visited in the sweep is
+/// corrected after each update (in later rows the part common to a row's updates once per row);
+/// once per sweep all slips are recomputed by FFT, which also stops round-off drift. Throws
 /// std::invalid_argument for inconsistent sizes or non-finite input.
 TangentialSummary SolveTangential(const SteadyRollingOperator& op, const TangentialProblem& problem,
                                   const TangentialOptions& options, TangentialWorkspace& workspace,
