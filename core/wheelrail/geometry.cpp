@@ -62,7 +62,7 @@ PlacedRail::PlacedRail(Profile profile, const Track& track) : spline_(profile) {
   }
   if (!std::isfinite(y_gauge)) {
     throw InputError("rail profile " + profile.source + " does not reach the gauge height " +
-                     std::to_string(track.gauge_height) + " mm below its top: set " +
+                     FormatNumber(track.gauge_height) + " mm below its top: set " +
                      "track.gauge_height <= 0 and place the rail with rail_y/rail_z");
   }
   p_TRo_T_ = {0.5 * track.gauge_width - y_gauge, z_shift};

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "wrc/coupled_solver.h"
 #include "wrc/errors.h"
@@ -234,7 +232,6 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   bool reuse = false;
   const SolveBox sb = ChooseBox(grid, h, ctx.cache, ctx.options->solve_box, reuse);
   Grid box = grid;
-  if (std::getenv("WRC_TRACE_BOX")) std::fprintf(stderr, "grid %dx%d box %dx%d at %d,%d reuse %d\n", grid.nx, grid.ny, sb.nx, sb.ny, sb.i0, sb.j0, int(reuse));
   box.nx = sb.nx;
   box.ny = sb.ny;
   box.x0 = grid.x(sb.i0);
