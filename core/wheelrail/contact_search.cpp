@@ -41,7 +41,7 @@ bool Locate(const PlacedWheel& wheel, double y, double z_rail, double x_guess, L
 }  // namespace
 
 ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step,
-                            double reach) {
+                            double reach, double z_limit) {
   ContactSearch search;
   // Equal steps of at most `step` that end exactly on the profile's last point, so that a
   // symmetric profile pair gives a symmetric search.
@@ -79,7 +79,7 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
       smallest = std::min(smallest, sample.gap);
     }
   }
-  const double threshold = smallest + reach + kDipMargin;
+  const double threshold = std::max(smallest, std::min(smallest + reach, z_limit)) + kDipMargin;
   for (std::size_t c = 0; c + 1 < coarse.size(); ++c) {
     const LocusSample& a = search.samples[coarse[c]];
     const LocusSample& b = search.samples[coarse[c + 1]];

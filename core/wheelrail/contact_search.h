@@ -3,6 +3,7 @@
 // profile, at the contact locus (for each lateral position the x where the gap is smallest,
 // shifted by yaw), and the interpenetration regions grouped into contact patches.
 
+#include <limits>
 #include <vector>
 
 #include "core/wheelrail/geometry.h"
@@ -29,9 +30,11 @@ struct ContactSearch {
 };
 
 /// Samples the rail at `step` and finds the contact locus against the wheel wherever the gap
-/// comes within `reach` (mm) of the smallest gap; samples further away are left invalid.
+/// comes within `reach` (mm) of the smallest gap and below `z_limit` (the largest wheelset
+/// shift that will be asked for, when known); samples further away are left invalid.
 ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step,
-                            double reach);
+                            double reach,
+                            double z_limit = std::numeric_limits<double>::infinity());
 
 /// A contact patch: a run of samples [first, last] (indices into the search) that holds one or
 /// more interpenetration regions closer than the combine distance.

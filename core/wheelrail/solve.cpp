@@ -238,7 +238,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   {
     const auto t_search = Clock::now();
     const PlacedWheel wheel0(pb.wheel_spline, c.wheelset, pb.kin);
-    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, options.max_interpenetration);
+    // With z prescribed only samples that interpenetrate at that z matter.
+    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, options.max_interpenetration,
+                                  st.z ? *st.z : std::numeric_limits<double>::infinity());
     timings.search = since(t_search);
   }
   bool any_valid = false;
