@@ -8,11 +8,12 @@
 ///
 /// Both sums split the D active axes into a lower half (active axes 0 .. L-1, L = ceil(D/2))
 /// and an upper half. A datum's weight is the product of a lower-half and an upper-half weight,
-/// both tabulated once per evaluation, and the sum is arranged as
+/// and the sum is arranged as
 ///   Σ_upper U · (Σ_lower L · data),
-/// so inner loops have compile-time lengths (2^L data, kChunk outputs), run two independent
-/// accumulators (2^L is even), and a derivative along an upper axis merely rescales the inner
-/// sums.
+/// so that a derivative along an upper axis merely rescales the inner sums. The multilinear
+/// kernel vectorises over outputs (inner loops of compile-time length: 2^L corners, kChunk
+/// outputs); the cubic kernel, whose data are stored subset-innermost, vectorises over the 2^L
+/// lower-half subsets of one output, with D a compile-time constant.
 
 #include <cstddef>
 
@@ -21,7 +22,7 @@
 namespace wrc::runtime {
 
 /// Largest number of lower-half (or upper-half) combinations: 2^ceil(kMaxAxes / 2).
-constexpr std::size_t kMaxHalf = std::size_t{1} << ((kMaxAxes + 1) / 2);
+constexpr std::size_t kMaxHalf = kMaxHalfCorners;
 
 /// Multilinear interpolation at one point: the 2^D corners of the cell.
 struct LinearTerms {
@@ -33,8 +34,8 @@ struct LinearTerms {
   std::size_t n_upper;            ///< 2^(D-L) upper-half corners (2^L lower ones).
   double lower_weight[kMaxHalf];  ///< ∏ over lower axes of (1 - t_j or t_j).
   double upper_weight[kMaxHalf];
-  std::size_t lower_offset[kMaxHalf];  ///< Of each lower-half corner, in doubles.
-  std::size_t upper_offset[kMaxHalf];
+  const std::size_t* lower_offset;  ///< Of each lower-half corner, in doubles (2^L entries).
+  const std::size_t* upper_offset;  ///< Of each upper-half corner.
   /// Per active axis j: its half's weights with axis j's factor replaced by ∓1/h.
   double d_weight[kMaxAxes][kMaxHalf];
   int axis[kMaxAxes];              ///< Axis index of active axis j.
@@ -42,22 +43,22 @@ struct LinearTerms {
 };
 
 /// Cubic Hermite interpolation at one point: 2^D corners × 2^D data (subsets S) per corner.
-/// A half's weight [corner][subset] is ∏ over its axes j of basis_j[2·c_j + s_j], basis_j being
-/// (h00, h·h10, h01, h·h11) at t_j.
+/// A node's Hermite data are laid out [output][subset] (Table::BuildCubic), so the 2^L subsets of
+/// the lower axes (subset bits 0 .. L-1) of one output and upper subset are contiguous: the
+/// kernel reads them as one vector and weights them by a vector of lower-half weights. The
+/// weight of corner c and subset s is ∏ over the axes j of basis[j][2·c_j + s_j]; the kernel
+/// forms these products itself, with D known at compile time.
 struct CubicTerms {
   const double* base;  ///< Hermite data of the cell's lower corner node, first output.
   std::size_t n_outputs;
   std::size_t n_axes;
   int n_active;
-  int n_lower_axes;
-  std::size_t n_upper;                 ///< 2^(D-L) upper corners, also upper subsets.
-  std::size_t lower_offset[kMaxHalf];  ///< Of each lower-half corner, in doubles.
-  std::size_t upper_offset[kMaxHalf];
-  double lower_weight[kMaxHalf][kMaxHalf];
-  double upper_weight[kMaxHalf][kMaxHalf];
-  /// With axis j's factor differentiated in x_j: lower axes j < L, upper ones at j - L.
-  double d_lower_weight[(kMaxAxes + 1) / 2][kMaxHalf][kMaxHalf];
-  double d_upper_weight[kMaxAxes / 2][kMaxHalf][kMaxHalf];
+  const std::size_t* lower_offset;  ///< Of each lower-half corner, in doubles (2^L entries).
+  const std::size_t* upper_offset;  ///< Of each upper-half corner (2^(D-L) entries).
+  /// Per active axis at t_j: (h00, h·h10, h01, h·h11) and their derivatives in x_j (the latter
+  /// only read when derivatives are asked for).
+  double basis[kMaxAxes][4];
+  double d_basis[kMaxAxes][4];
   int axis[kMaxAxes];
   bool derivative_zero[kMaxAxes];
 };

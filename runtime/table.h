@@ -16,11 +16,14 @@
 namespace wrc::runtime {
 
 constexpr int kMaxAxes = WRC_MAX_AXES;
+/// Most corners of one half of a cell's axes: 2^ceil(kMaxAxes / 2) (kernels.h: kMaxHalf).
+constexpr std::size_t kMaxHalfCorners = std::size_t{1} << ((kMaxAxes + 1) / 2);
 
 struct Kernels;  // kernels.h
 
-/// Doubles allocated past the end of the value and Hermite arrays: with more than 8 outputs the
-/// kernels read whole chunks of 8 and may run up to 7 doubles past the last datum (kernels.inc).
+/// Doubles allocated past the end of the value array: with more than 8 outputs the multilinear
+/// kernel reads whole chunks of 8 and may run up to 7 doubles past the last datum (kernels.inc).
+/// (The cubic kernel reads exactly its cell's data.)
 constexpr std::size_t kReadPadding = 8;
 
 /// A loading failure with its WRC_ERR_* code; what() names file, object and problem.
@@ -107,7 +110,10 @@ class Table {
   struct AxisLookup {
     const double* nodes;
     const double* inverse_steps;
+    double first;  ///< nodes[0]
+    double last;   ///< nodes[size - 1]
     int size;
+    int axis;  ///< Index into the point.
     bool nearly_uniform;
     double inverse_mean_step;
     std::size_t node_stride;
@@ -116,6 +122,10 @@ class Table {
   Table() = default;
   /// Fills active_axes_, node strides and lookup_ once axes_ is final.
   void IndexAxes();
+  /// Offsets, in doubles, of a cell's corners from its lower corner when each node holds
+  /// node_block doubles: offset[0] for the lower half of the active axes, offset[1] for the upper
+  /// half (kernels.h).
+  void CornerOffsets(std::size_t node_block, std::size_t (*offset)[kMaxHalfCorners]) const;
   /// Locates the point's cell; or a negative code (NaN) after SetLastError.
   int Locate(const double* point, Located& located) const noexcept;
   int ReportNan(int axis) const noexcept;
@@ -140,11 +150,19 @@ class Table {
   std::vector<double> values_;              ///< num_nodes × num_outputs (+ kReadPadding).
   std::vector<std::int8_t> status_;         ///< num_nodes.
   std::vector<std::uint8_t> linear_flags_;  ///< Per cell: kCellStatus | kCellNonFinite.
+  /// Offsets in values_ of a cell's corners: CornerOffsets(num_outputs).
+  std::size_t linear_offset_[2][kMaxHalfCorners] = {};
 
   int interpolation_ = WRC_INTERP_LINEAR;
-  /// Cubic node data: per node, per subset S of active axes (bit j = active axis j), per output:
-  /// the mixed derivative ∂^|S| f / ∏_{j∈S} ∂x_j estimated by limited slopes. Empty until needed.
+  /// Cubic node data: per node, per output, per subset S of active axes (bit j = active axis j):
+  /// the mixed derivative ∂^|S| f / ∏_{j∈S} ∂x_j estimated by limited slopes. Built by
+  /// SetInterpolation (the only allocation of cubic mode), empty until then. The node data start
+  /// at hermite_[hermite_start_], on a cache-line boundary.
   std::vector<double> hermite_;
+  std::size_t hermite_start_ = 0;
+  /// Offsets in hermite_, in doubles, of the corners of a cell relative to its lower corner:
+  /// [0] lower-half corners (active axes 0 .. L-1), [1] upper-half ones (kernels.h).
+  std::size_t cubic_offset_[2][kMaxHalfCorners] = {};
   std::vector<std::uint8_t> cubic_flags_;
 };
 

@@ -22,15 +22,20 @@
 // product Hermite interpolant of that data is C¹ everywhere in the table (on a cell face, the
 // function and its derivatives depend only on the data at the nodes of that face) and reproduces
 // functions that are cubic along each axis wherever no limiter acts. The cost is 2^D numbers per
-// node and output, built on the first switch to cubic mode.
+// node and output, built when a handle is switched to cubic mode (Table::SetInterpolation: the
+// one allocation of cubic mode; evaluation allocates nothing).
 //
-// Evaluation sums the 4^D terms (two nodes × {value, slope} per axis) with the kernels of
-// kernels.h; the weights factor into a lower-axes and an upper-axes table, built here (HalfWeights)
-// once per evaluation. Scratch space is about 20 KiB on the stack (sized for WRC_MAX_AXES);
-// nothing is allocated.
+// Node data are stored [node][output][subset], starting on a cache-line boundary: the data of
+// one output at one node (2^D doubles, 128 bytes for 4 axes) are contiguous, and the kernel
+// (kernels.inc) reads the subsets of the lower half of the axes as one vector. Evaluation sums
+// the 4^D terms (two nodes × {value, slope} per axis); the kernel forms the weights from the
+// per-axis Hermite bases computed here. A lookup on a 4-D table with 6 outputs reads 16 nodes ×
+// 16 × 6 doubles = 12 KiB, which dominates its cost when the cells are not cached. Scratch space
+// is fixed-size on the stack; nothing is allocated.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "runtime/kernels.h"
@@ -118,50 +123,6 @@ void LineSlopes(const double* x, int n, const double* f, double* slope) {
   }
 }
 
-// Tabulates [corner][subset] products over the kAxes active axes from `begin`; the factor of
-// axis `differentiated` (if among them, else -1) comes from d_basis. Compile-time kAxes: the
-// loops unroll completely.
-template <int kAxes>
-void HalfWeights(const double (*basis)[4], const double (*d_basis)[4], int begin,
-                 int differentiated, double (*weight)[kMaxHalf]) {
-  constexpr std::size_t kCount = std::size_t{1} << kAxes;
-  const double* factors[kAxes];
-  for (int i = 0; i < kAxes; ++i) {
-    factors[i] = begin + i == differentiated ? d_basis[begin + i] : basis[begin + i];
-  }
-  for (std::size_t corner = 0; corner < kCount; ++corner) {
-    for (std::size_t subset = 0; subset < kCount; ++subset) {
-      double product = 1.0;
-      for (int i = 0; i < kAxes; ++i) {
-        product *= factors[i][2 * ((corner >> i) & 1) + ((subset >> i) & 1)];
-      }
-      weight[corner][subset] = product;
-    }
-  }
-}
-
-void HalfWeights(int n_axes, const double (*basis)[4], const double (*d_basis)[4], int begin,
-                 int differentiated, double (*weight)[kMaxHalf]) {
-  static_assert((kMaxAxes + 1) / 2 <= 4, "HalfWeights covers at most 4 axes");
-  switch (n_axes) {
-    case 0:
-      weight[0][0] = 1.0;
-      break;
-    case 1:
-      HalfWeights<1>(basis, d_basis, begin, differentiated, weight);
-      break;
-    case 2:
-      HalfWeights<2>(basis, d_basis, begin, differentiated, weight);
-      break;
-    case 3:
-      HalfWeights<3>(basis, d_basis, begin, differentiated, weight);
-      break;
-    default:
-      HalfWeights<4>(basis, d_basis, begin, differentiated, weight);
-      break;
-  }
-}
-
 }  // namespace
 
 void Table::BuildCubic() {
@@ -169,9 +130,20 @@ void Table::BuildCubic() {
   const std::size_t n_out = outputs_.size();
   const std::size_t n_subsets = std::size_t{1} << n_active;
   const std::size_t block = n_subsets * n_out;
-  std::vector<double> data(num_nodes_ * block + kReadPadding, 0.0);
+  // Layout [node][output][subset]: the kernels read the lower-axes subsets of one output as one
+  // vector (kernels.inc). kLineDoubles of slack let the data start on a cache-line boundary, so
+  // that a node's block (a multiple of 64 bytes for 4 axes and 6 outputs) spans as few lines as
+  // possible.
+  constexpr std::size_t kLineDoubles = 64 / sizeof(double);
+  std::vector<double> data(num_nodes_ * block + kLineDoubles, 0.0);
+  const std::size_t misalignment =
+      reinterpret_cast<std::uintptr_t>(data.data()) / sizeof(double) % kLineDoubles;
+  const std::size_t start = (kLineDoubles - misalignment) % kLineDoubles;
+  const auto at = [&](std::size_t node, std::size_t k, std::size_t subset) -> double& {
+    return data[start + node * block + k * n_subsets + subset];
+  };
   for (std::size_t node = 0; node < num_nodes_; ++node) {
-    for (std::size_t k = 0; k < n_out; ++k) data[node * block + k] = values_[node * n_out + k];
+    for (std::size_t k = 0; k < n_out; ++k) at(node, k, 0) = values_[node * n_out + k];
   }
   std::size_t longest = 1;
   for (const Axis& axis : axes_) longest = std::max(longest, axis.values.size());
@@ -191,16 +163,18 @@ void Table::BuildCubic() {
       for (std::size_t k = 0; k < n_out; ++k) {
         for (int i = 0; i < n; ++i) {
           line[static_cast<std::size_t>(i)] =
-              data[(first + static_cast<std::size_t>(i) * stride) * block + source * n_out + k];
+              at(first + static_cast<std::size_t>(i) * stride, k, source);
         }
         LineSlopes(axis.values.data(), n, line.data(), slopes.data());
         for (int i = 0; i < n; ++i) {
-          data[(first + static_cast<std::size_t>(i) * stride) * block + subset * n_out + k] =
+          at(first + static_cast<std::size_t>(i) * stride, k, subset) =
               slopes[static_cast<std::size_t>(i)];
         }
       }
     }
   }
+
+  CornerOffsets(block, cubic_offset_);
 
   // Status flags per cell: every node inside the slope windows of the cell's corners enters the
   // result; the window ranges of the two corners along each axis are OR-ed, axis by axis.
@@ -233,7 +207,8 @@ void Table::BuildCubic() {
   for (std::size_t node = 0; node < num_nodes_; ++node) {
     flags[node] |= linear_flags_[node] & kCellNonFinite;
   }
-  hermite_.swap(data);
+  hermite_.swap(data);  // The buffer, hence its alignment, moves along.
+  hermite_start_ = start;
   cubic_flags_.swap(flags);
 }
 
@@ -243,7 +218,7 @@ void Table::EvalCubic(const Located& located, double* out, double* d_out) const 
   terms.n_axes = axes_.size();
   terms.n_active = static_cast<int>(active_axes_.size());
   const std::size_t block = (std::size_t{1} << terms.n_active) * terms.n_outputs;
-  terms.base = hermite_.data() + located.base_node * block;
+  terms.base = hermite_.data() + hermite_start_ + located.base_node * block;
   if (d_out != nullptr) {
     for (std::size_t i = 0; i < terms.n_outputs * terms.n_axes; ++i) d_out[i] = 0.0;
   }
@@ -251,48 +226,27 @@ void Table::EvalCubic(const Located& located, double* out, double* d_out) const 
     for (std::size_t k = 0; k < terms.n_outputs; ++k) out[k] = terms.base[k];
     return;
   }
-  terms.n_lower_axes = (terms.n_active + 1) / 2;
-  terms.n_upper = std::size_t{1} << (terms.n_active - terms.n_lower_axes);
-  double basis[kMaxAxes][4];
-  double d_basis[kMaxAxes][4];
-  terms.lower_offset[0] = 0;
-  terms.upper_offset[0] = 0;
+  terms.lower_offset = cubic_offset_[0];
+  terms.upper_offset = cubic_offset_[1];
   for (int j = 0; j < terms.n_active; ++j) {
     const double t = located.cell[j].t;
     const double h = located.cell[j].step;
-    const double inverse_h = located.cell[j].inverse_step;
     const double t2 = t * t;
     const double t3 = t2 * t;
-    basis[j][0] = 2.0 * t3 - 3.0 * t2 + 1.0;  // h00
-    basis[j][1] = h * (t3 - 2.0 * t2 + t);    // h·h10
-    basis[j][2] = -2.0 * t3 + 3.0 * t2;       // h01
-    basis[j][3] = h * (t3 - t2);              // h·h11
-    d_basis[j][0] = (6.0 * t2 - 6.0 * t) * inverse_h;
-    d_basis[j][1] = 3.0 * t2 - 4.0 * t + 1.0;
-    d_basis[j][2] = (6.0 * t - 6.0 * t2) * inverse_h;
-    d_basis[j][3] = 3.0 * t2 - 2.0 * t;
+    double* basis = terms.basis[j];
+    basis[0] = 2.0 * t3 - 3.0 * t2 + 1.0;  // h00
+    basis[1] = h * (t3 - 2.0 * t2 + t);    // h·h10
+    basis[2] = -2.0 * t3 + 3.0 * t2;       // h01
+    basis[3] = h * (t3 - t2);              // h·h11
     terms.axis[j] = active_axes_[static_cast<std::size_t>(j)];
     terms.derivative_zero[j] = located.derivative_zero[j];
-    const bool lower_axis = j < terms.n_lower_axes;
-    const int bit = lower_axis ? j : j - terms.n_lower_axes;
-    std::size_t* offset = lower_axis ? terms.lower_offset : terms.upper_offset;
-    const std::size_t half = std::size_t{1} << bit;
-    const std::size_t step = lookup_[j].node_stride * block;
-    for (std::size_t c = 0; c < half; ++c) offset[c + half] = offset[c] + step;
-  }
-  const int n_upper_axes = terms.n_active - terms.n_lower_axes;
-  HalfWeights(terms.n_lower_axes, basis, d_basis, 0, -1, terms.lower_weight);
-  HalfWeights(n_upper_axes, basis, d_basis, terms.n_lower_axes, -1, terms.upper_weight);
-  if (d_out != nullptr) {
-    for (int j = 0; j < terms.n_active; ++j) {
-      if (terms.derivative_zero[j]) continue;
-      if (j < terms.n_lower_axes) {
-        HalfWeights(terms.n_lower_axes, basis, d_basis, 0, j, terms.d_lower_weight[j]);
-      } else {
-        HalfWeights(n_upper_axes, basis, d_basis, terms.n_lower_axes, j,
-                    terms.d_upper_weight[j - terms.n_lower_axes]);
-      }
-    }
+    if (d_out == nullptr) continue;
+    const double inverse_h = located.cell[j].inverse_step;
+    double* d_basis = terms.d_basis[j];
+    d_basis[0] = (6.0 * t2 - 6.0 * t) * inverse_h;
+    d_basis[1] = 3.0 * t2 - 4.0 * t + 1.0;
+    d_basis[2] = (6.0 * t - 6.0 * t2) * inverse_h;
+    d_basis[3] = 3.0 * t2 - 2.0 * t;
   }
   kernels_->cubic(terms, out, d_out);
 }

@@ -17,8 +17,12 @@ int Table::ReportNan(int axis) const noexcept {
 
 int Table::Locate(const double* point, Located& located) const noexcept {
   const int n_axes = num_axes();
-  for (int a = 0; a < n_axes; ++a) {
-    if (std::isnan(point[a])) return ReportNan(a);
+  bool nan = false;  // One branch for all axes; the rare error path finds which one.
+  for (int a = 0; a < n_axes; ++a) nan |= std::isnan(point[a]);
+  if (nan) {
+    for (int a = 0; a < n_axes; ++a) {
+      if (std::isnan(point[a])) return ReportNan(a);
+    }
   }
   int flags = 0;
   std::size_t base_node = 0;
@@ -27,22 +31,17 @@ int Table::Locate(const double* point, Located& located) const noexcept {
     const AxisLookup& axis = lookup_[j];
     const double* v = axis.nodes;
     const int n = axis.size;
-    double x = point[active_axes_[static_cast<std::size_t>(j)]];
-    bool outside = false;
-    if (x < v[0]) {
-      x = v[0];
-      outside = true;
-    } else if (x > v[n - 1]) {
-      x = v[n - 1];
-      outside = true;
-    }
-    if (outside) flags |= WRC_FLAG_CLAMPED;
+    const double raw = point[axis.axis];
+    // Clamped without branches (minsd/maxsd): out-of-range points are rare but not predictable.
+    const double x = std::min(std::max(raw, axis.first), axis.last);
+    const bool outside = x != raw;
+    flags |= outside ? WRC_FLAG_CLAMPED : 0;
     located.derivative_zero[j] = outside;  // The returned f(clamp(x)) is flat out there.
     int i = 0;
     if (axis.nearly_uniform) {
-      // x is inside [v[0], v[n-1]] now, so the guess is finite and non-negative.
-      i = static_cast<int>((x - v[0]) * axis.inverse_mean_step);
-      if (i > n - 2) i = n - 2;
+      // x is inside [first, last] now, so the guess is finite and non-negative; it is at most one
+      // cell off (table_load.cpp), and the loops below almost never run.
+      i = std::min(static_cast<int>((x - axis.first) * axis.inverse_mean_step), n - 2);
       while (i > 0 && x < v[i]) --i;
       while (i < n - 2 && x >= v[i + 1]) ++i;
     } else {
@@ -50,14 +49,16 @@ int Table::Locate(const double* point, Located& located) const noexcept {
       i = std::clamp(i, 0, n - 2);
     }
     CellCoordinate& cell = located.cell[j];
+    const double lower = v[i];
+    const double upper = v[i + 1];
     cell.index = i;
-    cell.step = v[i + 1] - v[i];
+    cell.step = upper - lower;
     cell.inverse_step = axis.inverse_steps[i];
     // Multiplying by the stored inverse may round (x - v[i]) / h just past 1 or, at the last
     // node, just below it; the end nodes must give t exactly 0 and 1 so that node values come
     // out exact.
-    const double t = (x - v[i]) * cell.inverse_step;
-    cell.t = x >= v[i + 1] ? 1.0 : (t < 1.0 ? t : 1.0);
+    const double t = (x - lower) * cell.inverse_step;
+    cell.t = x >= upper ? 1.0 : std::min(t, 1.0);
     base_node += static_cast<std::size_t>(i) * axis.node_stride;
   }
   if (n_active != n_axes) {  // Axes with a single node: only that coordinate is inside.
@@ -70,6 +71,46 @@ int Table::Locate(const double* point, Located& located) const noexcept {
   located.base_node = base_node;
   return 0;
 }
+
+namespace {
+
+// weight[c] = ∏_{j < kCount} (bit j of c ? upper[j] : lower[j]). A compile-time count unrolls
+// the loops completely (with a run-time count the compiler vectorises these tiny loops, with
+// prologues and epilogues that cost more than the products).
+template <int kCount>
+inline void CornerWeights(const double* lower, const double* upper, double* weight) {
+  weight[0] = 1.0;
+  for (int j = 0; j < kCount; ++j) {
+    const int half = 1 << j;
+    for (int c = 0; c < half; ++c) {
+      weight[c + half] = weight[c] * upper[j];
+      weight[c] *= lower[j];
+    }
+  }
+}
+
+void CornerWeights(int count, const double* lower, const double* upper, double* weight) {
+  static_assert((kMaxAxes + 1) / 2 <= 4, "CornerWeights covers at most 4 axes");
+  switch (count) {
+    case 0:
+      weight[0] = 1.0;
+      break;
+    case 1:
+      CornerWeights<1>(lower, upper, weight);
+      break;
+    case 2:
+      CornerWeights<2>(lower, upper, weight);
+      break;
+    case 3:
+      CornerWeights<3>(lower, upper, weight);
+      break;
+    default:
+      CornerWeights<4>(lower, upper, weight);
+      break;
+  }
+}
+
+}  // namespace
 
 void Table::EvalLinear(const Located& located, double* out, double* d_out) const noexcept {
   LinearTerms terms;
@@ -84,46 +125,38 @@ void Table::EvalLinear(const Located& located, double* out, double* d_out) const
     for (std::size_t k = 0; k < terms.n_outputs; ++k) out[k] = terms.values[k];
     return;
   }
-  terms.n_lower_axes = (terms.n_active + 1) / 2;
-  terms.n_upper = std::size_t{1} << (terms.n_active - terms.n_lower_axes);
-  // Corner weights of the active axes [begin, end): the outer product of (1 - t_j, t_j), with
-  // the factor of axis `differentiated` (if in range) replaced by (-1/h, 1/h).
-  const auto corner_weights = [&](int begin, int end, int differentiated, double* weight) {
-    weight[0] = 1.0;
-    for (int j = begin; j < end; ++j) {
-      const std::size_t half = std::size_t{1} << (j - begin);
-      const double t = located.cell[j].t;
-      const double inverse_step = located.cell[j].inverse_step;
-      const bool derivative = j == differentiated;
-      const double upper = derivative ? inverse_step : t;
-      const double lower = derivative ? -inverse_step : 1.0 - t;
-      for (std::size_t c = 0; c < half; ++c) {
-        weight[c + half] = weight[c] * upper;
-        weight[c] *= lower;
-      }
-    }
-  };
-  const auto corner_offsets = [&](int begin, int end, std::size_t* offset) {
-    offset[0] = 0;
-    for (int j = begin; j < end; ++j) {
-      const std::size_t half = std::size_t{1} << (j - begin);
-      const std::size_t step = lookup_[j].node_stride * terms.n_outputs;
-      for (std::size_t c = 0; c < half; ++c) offset[c + half] = offset[c] + step;
-    }
-  };
-  corner_weights(0, terms.n_lower_axes, kMaxAxes, terms.lower_weight);  // No derivative.
-  corner_weights(terms.n_lower_axes, terms.n_active, kMaxAxes, terms.upper_weight);
-  corner_offsets(0, terms.n_lower_axes, terms.lower_offset);
-  corner_offsets(terms.n_lower_axes, terms.n_active, terms.upper_offset);
+  const int n_lower_axes = (terms.n_active + 1) / 2;
+  const int n_upper_axes = terms.n_active - n_lower_axes;
+  terms.n_lower_axes = n_lower_axes;
+  terms.n_upper = std::size_t{1} << n_upper_axes;
+  terms.lower_offset = linear_offset_[0];
+  terms.upper_offset = linear_offset_[1];
+  // Per axis the factors of the lower and the upper corner: 1 - t and t. (Zeroed: GCC cannot
+  // see that only the first n_active entries are read.)
+  double lower[kMaxAxes] = {};
+  double upper[kMaxAxes] = {};
+  for (int j = 0; j < terms.n_active; ++j) {
+    lower[j] = 1.0 - located.cell[j].t;
+    upper[j] = located.cell[j].t;
+  }
+  CornerWeights(n_lower_axes, lower, upper, terms.lower_weight);
+  CornerWeights(n_upper_axes, lower + n_lower_axes, upper + n_lower_axes, terms.upper_weight);
   if (d_out != nullptr) {
+    // ∂/∂x_j: axis j's factors become -1/h and 1/h.
     for (int j = 0; j < terms.n_active; ++j) {
       terms.axis[j] = active_axes_[static_cast<std::size_t>(j)];
       terms.derivative_zero[j] = located.derivative_zero[j];
-      if (j < terms.n_lower_axes) {
-        corner_weights(0, terms.n_lower_axes, j, terms.d_weight[j]);
+      const double saved_lower = lower[j];
+      const double saved_upper = upper[j];
+      lower[j] = -located.cell[j].inverse_step;
+      upper[j] = located.cell[j].inverse_step;
+      if (j < n_lower_axes) {
+        CornerWeights(n_lower_axes, lower, upper, terms.d_weight[j]);
       } else {
-        corner_weights(terms.n_lower_axes, terms.n_active, j, terms.d_weight[j]);
+        CornerWeights(n_upper_axes, lower + n_lower_axes, upper + n_lower_axes, terms.d_weight[j]);
       }
+      lower[j] = saved_lower;
+      upper[j] = saved_upper;
     }
   }
   kernels_->linear(terms, out, d_out);

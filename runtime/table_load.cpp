@@ -131,13 +131,31 @@ void Table::IndexAxes() {
     AxisLookup& lookup = lookup_[active_axes_.size()];
     lookup.nodes = axis.values.data();
     lookup.inverse_steps = axis.inverse_steps.data();
+    lookup.first = axis.values.front();
+    lookup.last = axis.values.back();
     lookup.size = static_cast<int>(axis.values.size());
+    lookup.axis = static_cast<int>(a);
     lookup.nearly_uniform = axis.nearly_uniform;
     lookup.inverse_mean_step = axis.inverse_mean_step;
     lookup.node_stride = node_stride_[a];
     active_axes_.push_back(static_cast<int>(a));
   }
   kernels_ = &SelectKernels();
+}
+
+void Table::CornerOffsets(std::size_t node_block, std::size_t (*offset)[kMaxHalfCorners]) const {
+  const int n_active = static_cast<int>(active_axes_.size());
+  const int n_lower_axes = (n_active + 1) / 2;
+  for (int half = 0; half < 2; ++half) {
+    offset[half][0] = 0;
+    const int begin = half == 0 ? 0 : n_lower_axes;
+    const int end = half == 0 ? n_lower_axes : n_active;
+    for (int j = begin; j < end; ++j) {
+      const std::size_t corners = std::size_t{1} << (j - begin);
+      const std::size_t step = lookup_[j].node_stride * node_block;
+      for (std::size_t c = 0; c < corners; ++c) offset[half][c + corners] = offset[half][c] + step;
+    }
+  }
 }
 
 Table Table::Load(const std::string& path) {
@@ -211,6 +229,7 @@ Table Table::Load(const std::string& path) {
     Invalid(where + "/outputs", "table too large for this machine");
   }
   table.values_.assign(table.num_nodes_ * n_out + kReadPadding, 0.0);
+  table.CornerOffsets(n_out, table.linear_offset_);
   for (std::size_t k = 0; k < n_out; ++k) {
     const std::string& name = output_names[k];
     const std::string output_where = where + "/outputs/" + name;

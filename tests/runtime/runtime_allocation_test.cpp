@@ -197,4 +197,88 @@ TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
   wrc_table_close(cubic);
 }
 
+// The cubic node data are built when a handle is switched to cubic mode (that call may allocate,
+// as documented in runtime.h); from then on cubic evaluation allocates nothing, on every path
+// (values, derivatives, clamped points, a failed node stored as NaN giving WRC_ERR_NO_DATA, NaN
+// input), and switching modes back and forth reuses the data.
+TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
+  wrc::test::ScratchFile scratch("allocation-switch");
+  wrc::test::TableContent content;
+  content.axes = {{"y", wrc::test::Linspace(-10, 10, 21)},
+                  {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
+                  {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
+                  {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+  content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
+  const auto failed = [](const std::vector<double>& x) { return x[0] == 5.0 && x[3] == 0.0; };
+  content.function = [&](int k, const std::vector<double>& x) {
+    if (failed(x)) return std::nan("");
+    return std::sin(0.3 * x[0] + k) + 100.0 * x[1] + std::cos(300.0 * x[3]) * x[2];
+  };
+  content.status = [&](const std::vector<double>& x) -> std::int8_t { return failed(x) ? 2 : 0; };
+  wrc::test::WriteTable(scratch.path(), content);
+
+  std::mt19937 random(37);
+  std::uniform_real_distribution<double> unit(-1.2, 1.2);  // Some points clamped.
+  std::vector<double> points;
+  for (int i = 0; i < 500; ++i) {
+    points.push_back(10.0 * unit(random));
+    points.push_back(0.002 * unit(random));
+    points.push_back(0.01 * unit(random));
+    points.push_back(i % 50 == 0 ? std::nan("") : 0.01 * unit(random));
+  }
+  points.insert(points.end(), {5.0, 0.0, 0.0, 0.001});  // In a cell of the failed node.
+  std::vector<double> out(6);
+  std::vector<double> d_out(6 * 4);
+  // Evaluates every point with and without derivatives; returns the allocations made and
+  // counts the results that were errors.
+  const auto evaluate_all = [&](const wrc_table* table, int* errors) {
+    AllocationCounter counter;
+    for (std::size_t i = 0; i < points.size(); i += 4) {
+      *errors += wrc_table_eval(table, &points[i], out.data()) < 0;
+      *errors += wrc_table_eval_deriv(table, &points[i], out.data(), d_out.data()) < 0;
+      g_sink = const_cast<char*>(wrc_last_error());
+    }
+    return counter.count();
+  };
+
+  wrc_table* table = nullptr;
+  ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &table), 0) << wrc_last_error();
+  int errors = 0;
+  EXPECT_EQ(evaluate_all(table, &errors), 0);  // Linear first.
+  const int linear_errors = errors;
+  EXPECT_GE(errors, 2 * 10 + 2);  // NaN inputs; points in cells of the failed node.
+  ASSERT_EQ(wrc_table_set_interpolation(table, WRC_INTERP_CUBIC), 0);  // Builds: may allocate.
+  errors = 0;
+  EXPECT_EQ(evaluate_all(table, &errors), 0);
+  EXPECT_EQ(errors, linear_errors);  // Cubic slopes skip the NaN node: the same cells fail.
+  long switches = 0;
+  {
+    AllocationCounter counter;
+    EXPECT_EQ(wrc_table_set_interpolation(table, WRC_INTERP_LINEAR), 0);
+    EXPECT_EQ(wrc_table_set_interpolation(table, WRC_INTERP_CUBIC), 0);
+    switches = counter.count();
+  }
+  EXPECT_EQ(switches, 0);  // The cubic data are kept.
+  errors = 0;
+  EXPECT_EQ(evaluate_all(table, &errors), 0);
+  wrc_table_close(table);
+
+  // The C++ layer, switched to cubic after construction (try_eval: eval would throw, and
+  // allocate the exception, on the error points).
+  wrc::Table wrapped(scratch.path());
+  wrapped.set_interpolation(wrc::Interpolation::kCubic);
+  long count = 0;
+  errors = 0;
+  {
+    AllocationCounter counter;
+    for (std::size_t i = 0; i < points.size(); i += 4) {
+      errors += wrapped.try_eval(&points[i], out.data(), d_out.data()) < 0;
+      errors += wrapped.try_eval(&points[i], out.data()) < 0;
+    }
+    count = counter.count();
+  }
+  EXPECT_EQ(count, 0);
+  EXPECT_EQ(errors, linear_errors);
+}
+
 }  // namespace

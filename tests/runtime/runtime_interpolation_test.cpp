@@ -331,6 +331,43 @@ TEST(RuntimeInterpolation, CubicIsContinuouslyDifferentiableAcrossCells) {
   EXPECT_GT(largest_linear, 1e-2);
 }
 
+TEST(RuntimeInterpolation, ValuesDoNotDependOnAskingForDerivatives) {
+  // eval and eval with derivatives sum the values in the same order: bitwise the same results
+  // (an integrator may mix both kinds of call).
+  ScratchFile scratch_3d("same-3d");
+  wrc::test::WriteTable(scratch_3d.path(), SmoothTable());
+  ScratchFile scratch_4d("same-4d");
+  TableContent content;
+  content.axes = {{"y", Jittered(-10, 10, 9, 31)},
+                  {"roll", Linspace(-0.002, 0.002, 5)},
+                  {"yaw", Jittered(-0.01, 0.01, 5, 32)},
+                  {"spin", Linspace(-0.01, 0.01, 7)}};
+  content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
+  content.function = [](int k, const std::vector<double>& x) {
+    return std::sin(0.3 * x[0] + k) * (1.0 + 300.0 * x[1]) + std::tanh(300.0 * x[3]) * x[2];
+  };
+  wrc::test::WriteTable(scratch_4d.path(), content);
+  for (const std::string& path : {scratch_3d.path(), scratch_4d.path()}) {
+    for (Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic}) {
+      Table table(path);
+      table.set_interpolation(mode);
+      std::mt19937 random(16);
+      const std::size_t n_out = static_cast<std::size_t>(table.num_outputs());
+      std::vector<double> values(n_out);
+      std::vector<double> with_derivatives(n_out);
+      std::vector<double> d_out(n_out * static_cast<std::size_t>(table.num_axes()));
+      int mismatches = 0;
+      for (int i = 0; i < 300; ++i) {
+        const std::vector<double> x = RandomPoint(table, random);
+        table.eval(x.data(), values.data());
+        table.eval(x.data(), with_derivatives.data(), d_out.data());
+        mismatches += values != with_derivatives;
+      }
+      EXPECT_EQ(mismatches, 0) << path << ", mode " << static_cast<int>(mode);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Flags and errors
 
