@@ -66,10 +66,8 @@ int Plan2d::FastSize(int m) {
   if (m <= 2) return 2;
   for (int n = m + (m % 2);; n += 2) {
     int r = n;
-    for (int f : {2, 3, 5}) {
-      while (r % f == 0) r /= f;
-    }
-    if (r == 1) return n;
+    while (r % 2 == 0) r /= 2;
+    if (r == 1 || r == 3 || r == 5) return n;
   }
 }
 
