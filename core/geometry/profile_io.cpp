@@ -303,8 +303,9 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
   // 3: rotate. Its sign convention is not documented well enough to apply it safely.
   if (number(settings, "rotate", 0.0) != 0.0) {
     throw InputError(At(path, line_of(settings, "rotate"),
-                        "a non-zero Simpack 'rotate' is not supported; rotate the points in "
-                        "the file instead"));
+                        "rotate = '" + settings.at("rotate").value +
+                            "': a non-zero Simpack 'rotate' is not supported; rotate the points "
+                            "in the file instead"));
   }
   // 4: bounds; a pair with min >= max (Simpack writes min = 1, max = 0) means no bound.
   const double y_min = number(settings, "bound.y.min", 1.0);
@@ -343,7 +344,9 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
   } else {
     const double unit_per_metre = number(settings, "units.len.f", 1000.0);
     if (unit_per_metre <= 0.0) {
-      throw InputError(At(path, line_of(settings, "units.len.f"), "units.len.f must be positive"));
+      throw InputError(At(path, line_of(settings, "units.len.f"),
+                          "units.len.f = '" + settings.at("units.len.f").value +
+                              "' must be positive (length units per metre, 1000 for mm)"));
     }
     const double to_mm = 1000.0 / unit_per_metre;
     if (to_mm != 1.0) {

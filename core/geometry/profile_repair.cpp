@@ -160,7 +160,7 @@ void RemoveZigZags(std::vector<Point>& points, double threshold_deg, bool remove
              "zig-zag at lines " + std::to_string(first_line) + " and " +
                  std::to_string(second_line) + " (turns of " + Format("%.1f", turn * 180.0 / kPi) +
                  "° and " + Format("%.1f", next_turn * 180.0 / kPi) + "° > " +
-                 Format("%g", threshold_deg) + "°): the two points are replaced by their average"));
+                 FormatNumber(threshold_deg) + "°): the two points are replaced by their average"));
       points[i] = merged;
       points.erase(points.begin() + static_cast<std::ptrdiff_t>(i) + 1);
     } else if (!remove_spikes) {
@@ -170,7 +170,7 @@ void RemoveZigZags(std::vector<Point>& points, double threshold_deg, bool remove
       warnings.push_back(At(source, points[i].line,
                             "spike: the profile turns back by " +
                                 Format("%.1f", turn * 180.0 / kPi) + "° > " +
-                                Format("%g", threshold_deg) + "° at line " +
+                                FormatNumber(threshold_deg) + "° at line " +
                                 std::to_string(points[i].line) + "; the point is deleted"));
       points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
     }
@@ -277,23 +277,23 @@ double Profile::PolylineLength() const {
 Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOptions& options) {
   const std::string& source = input.source;
   if (!(options.zigzag_threshold_deg > 45.0 && options.zigzag_threshold_deg <= 180.0)) {
-    throw InputError(source + ": zig-zag threshold " + Format("%g", options.zigzag_threshold_deg) +
+    throw InputError(source + ": zig-zag threshold " + FormatNumber(options.zigzag_threshold_deg) +
                      "° outside (45°, 180°]");
   }
   if (!(options.smoothing >= 0.0) || !std::isfinite(options.smoothing)) {
-    throw InputError(source + ": smoothing " + Format("%g", options.smoothing) +
+    throw InputError(source + ": smoothing " + FormatNumber(options.smoothing) +
                      " must be a finite number >= 0");
   }
   // NaN fails every comparison below, so it is refused too.
   if (!(options.kink_high_rad > 0.0)) {
-    throw InputError(source + ": kink_high_rad " + Format("%g", options.kink_high_rad) +
+    throw InputError(source + ": kink_high_rad " + FormatNumber(options.kink_high_rad) +
                      " must be > 0 (>= pi disables kink detection)");
   }
   if (std::isnan(options.kink_low_rad)) {
     throw InputError(source + ": kink_low_rad is not a number (negative means kink_high_rad/5)");
   }
   if (!(options.kink_width >= 0.0) || !std::isfinite(options.kink_width)) {
-    throw InputError(source + ": kink_width " + Format("%g", options.kink_width) +
+    throw InputError(source + ": kink_width " + FormatNumber(options.kink_width) +
                      " mm must be a finite number >= 0");
   }
   if (input.y.size() != input.z.size() || input.y.size() != input.lines.size()) {

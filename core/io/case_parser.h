@@ -16,8 +16,9 @@ namespace wrc::io {
 
 /// How a document is read as a case.
 struct CaseParseOptions {
-  /// Check that profile files exist (only when reading from disk: a scene stored in a table
-  /// is re-read without its original files next to it).
+  /// Check that the profile files exist and read as profiles (ReadProfile and ProfileSpline,
+  /// errors reported at the [rail]/[wheel] profile key). Only when reading from disk: a scene
+  /// stored in a table is re-read without its original files next to it.
   bool check_files_exist = false;
   /// Accept a [table] section (scenes); its contents are checked by the scene parser.
   bool allow_table_section = false;

@@ -1,7 +1,6 @@
 #include "core/io/toml_reader.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -20,14 +19,6 @@ std::string PositionPrefix(const std::string& file, const toml::source_position&
 }
 
 }  // namespace
-
-std::string FormatNumber(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 std::string DescribeValue(const toml::node& node) {
   if (const auto* text = node.as_string()) return "\"" + text->get() + "\"";

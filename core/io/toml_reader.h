@@ -12,14 +12,16 @@
 
 #include <toml++/toml.h>
 
+#include "wrc/errors.h"
+
 namespace wrc::io {
 
 /// A value as written in the file, for messages: strings quoted, numbers in shortest form,
 /// arrays element by element (abbreviated when long), tables as "{...}".
 std::string DescribeValue(const toml::node& node);
 
-/// A number in its shortest exact form ("0.1", "-20", "nan").
-std::string FormatNumber(double value);
+/// A number in its shortest exact form ("0.1", "-20", "1e+12", "nan"); see wrc/errors.h.
+using wrc::FormatNumber;
 
 /// Edit distance (insertions, deletions, substitutions and swaps of neighbours), used to
 /// suggest the intended name for a typo.

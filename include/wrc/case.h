@@ -199,8 +199,11 @@ inline double OmegaFromSpin(double spin, double velocity, double nominal_radius)
   return -(velocity / nominal_radius) * (1.0 + spin);
 }
 
-/// Reads and validates a case file. Also checks that the profile files exist.
-/// Throws InputError with a message "file:line: key = value: problem".
+/// Reads and validates a case file. Also checks that the profile files exist and read as
+/// profiles (ReadProfile with the case's mirror_y, then ProfileSpline), so that a broken profile
+/// is reported with the key that names it. Throws InputError with a message
+/// "file:line: key = value: problem", for a profile "case.toml:4: rail.profile = "rail.csv":
+/// /.../rail.csv:5: <problem>".
 Case LoadCase(const std::filesystem::path& path);
 
 /// Parses and validates case text. `base_dir` resolves relative profile paths (the files need

@@ -219,9 +219,9 @@ struct ProfileHeight {
     kOutside,      ///< No point of the profile has this y; z and s are NaN.
   };
   Status status = Status::kOutside;
-  double z = 0.0;  ///< Height at y, mm (NaN when outside).
-  double s = 0.0;  ///< Arc length at that point, mm (NaN when outside).
-  double dz_dy = 0.0;  ///< Slope dz/dy there (±1e12 where the profile is vertical; NaN outside).
+  double z = 0.0;      ///< Height at y, mm (NaN when outside).
+  double s = 0.0;      ///< Arc length at that point, mm (NaN when outside).
+  double dz_dy = 0.0;  ///< Slope dz/dy there (1e12 where the profile is vertical; NaN outside).
   /// True unless outside.
   bool found() const { return status != Status::kOutside; }
 };

@@ -29,7 +29,9 @@ using test::Quoted;
 using test::ScratchDir;
 namespace fs = std::filesystem;
 
-// 4 × 10 points: long enough (a second or more) to be caught half-way.
+// 4 × 10 points: under a second with 2 threads in a Release build, so the tests below catch a
+// run part-way by stopping it (StartAndCatch) rather than by timing.
+constexpr std::size_t kKillScenePoints = 40;
 std::string KillScene() {
   return test::TinyScene(
       "axes = [\"yaw\", \"y\"]\nyaw = [-0.004, 0.0, 0.002, 0.004]\n"
@@ -76,6 +78,46 @@ bool WaitForRecords(pid_t pid, const fs::path& journal, std::size_t n) {
   return false;
 }
 
+// A `wrc generate` run caught part-way: its pid, stopped, and the records in its journal.
+struct CaughtRun {
+  pid_t pid = -1;
+  std::size_t records = 0;
+};
+
+// Starts `wrc generate SCENE -o TABLE --threads THREADS`, waits until its journal holds at least
+// `min_records` points (the signal handlers are installed before the journal is created), then
+// freezes it with SIGSTOP, which it can neither catch nor delay. Whatever the test sends next
+// reaches a run that cannot move on meanwhile, so how far it got is known, not raced: a fixed
+// sleep, or a signal sent to a running process after reading the journal, can come too late on
+// a loaded machine, when the run has finished or is about to (exit 0 instead of 130). A run
+// caught too late even so (the test process descheduled for the second the rest takes) is
+// killed and started again, up to 3 times; `pid` is -1 when no attempt worked. Each worker
+// finishes the point it is on and may claim one more before it sees a signal, hence the margin.
+CaughtRun StartAndCatch(const fs::path& scene, const fs::path& table, int threads,
+                        std::size_t min_records) {
+  const fs::path journal = table.string() + ".journal";
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    fs::remove(table);
+    fs::remove(journal);
+    const pid_t pid = Spawn(
+        {"generate", scene.string(), "-o", table.string(), "--threads", std::to_string(threads)});
+    if (pid <= 0) break;
+    int status = 0;
+    if (!WaitForRecords(pid, journal, min_records)) {
+      // Ended before it got there (already reaped), or stuck: make sure it is gone.
+      if (kill(pid, SIGKILL) == 0) waitpid(pid, &status, 0);
+      continue;
+    }
+    kill(pid, SIGSTOP);
+    if (waitpid(pid, &status, WUNTRACED) != pid || !WIFSTOPPED(status)) continue;  // it ended
+    const std::size_t records = JournalRecords(journal);
+    if (records + 2 * static_cast<std::size_t>(threads) < kKillScenePoints) return {pid, records};
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  return {};
+}
+
 int WaitExitCode(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
@@ -86,6 +128,30 @@ int WaitExitCode(pid_t pid) {
 std::string Generate(const fs::path& scene, const fs::path& table, const std::string& extra = "") {
   return Quoted(test::WrcBinary()) + " generate " + Quoted(scene.string()) + " -o " +
          Quoted(table.string()) + " " + extra;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define WRC_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define WRC_TEST_UNDER_ASAN 1
+#endif
+#endif
+
+// `mpirun` with two ranks. In a sanitizer build (WRC_SANITIZE) LeakSanitizer reports Open MPI's
+// own allocations when the ranks exit and fails them; the ranks get the suppressions of
+// tools/lsan.supp, which match only with the slow unwinder (Open MPI has no frame pointers; see
+// that file). Passed with -x to the ranks alone: it slows every allocation down about 10 times.
+std::string Mpirun() {
+  std::string command = "mpirun --allow-run-as-root --oversubscribe -n 2 ";
+#ifdef WRC_TEST_UNDER_ASAN
+  command += "-x " +
+             Quoted("LSAN_OPTIONS=suppressions=" +
+                    (fs::path(WRC_SOURCE_DIR) / "tools" / "lsan.supp").string() +
+                    ":print_suppressions=0:fast_unwind_on_malloc=0") +
+             " ";
+#endif
+  return command;
 }
 
 // A table of the kill scene generated in one go, shared by the tests below.
@@ -111,13 +177,15 @@ fs::path CliGenerateTest::reference_;
 TEST_F(CliGenerateTest, KilledWithSigkillAndResumedGivesTheSameTable) {
   const fs::path table = *dir_ / "killed.h5";
   const fs::path journal = table.string() + ".journal";
-  const pid_t pid = Spawn({"generate", scene_.string(), "-o", table.string(), "--threads", "1"});
-  ASSERT_TRUE(WaitForRecords(pid, journal, 4)) << "the run ended before it could be killed";
-  kill(pid, SIGKILL);
-  EXPECT_EQ(WaitExitCode(pid), 128 + SIGKILL);
+  const CaughtRun run = StartAndCatch(scene_, table, 1, 4);
+  ASSERT_GT(run.pid, 0) << "the run could not be caught before it ended";
+  kill(run.pid, SIGKILL);
+  EXPECT_EQ(WaitExitCode(run.pid), 128 + SIGKILL);
+  // Stopped, it wrote nothing more: the journal holds exactly what it held then.
   const std::size_t saved = JournalRecords(journal);
+  EXPECT_EQ(saved, run.records);
   EXPECT_GE(saved, 4u);
-  EXPECT_LT(saved, 40u);
+  EXPECT_LT(saved, kKillScenePoints);
   EXPECT_FALSE(fs::exists(table));
 
   const test::CommandResult resumed =
@@ -131,15 +199,19 @@ TEST_F(CliGenerateTest, KilledWithSigkillAndResumedGivesTheSameTable) {
 TEST_F(CliGenerateTest, SigintStopsCleanlyAndTellsHowToResume) {
   const fs::path table = *dir_ / "interrupted.h5";
   const fs::path journal = table.string() + ".journal";
-  const pid_t pid = Spawn({"generate", scene_.string(), "-o", table.string(), "--threads", "2"});
-  ASSERT_TRUE(WaitForRecords(pid, journal, 2)) << "the run ended before it could be interrupted";
-  kill(pid, SIGINT);
-  EXPECT_EQ(WaitExitCode(pid), 130);
+  const CaughtRun run = StartAndCatch(scene_, table, 2, 2);
+  ASSERT_GT(run.pid, 0) << "the run could not be caught before it ended";
+  // SIGINT waits while the run is stopped and is handled as soon as it continues.
+  kill(run.pid, SIGINT);
+  kill(run.pid, SIGCONT);
+  EXPECT_EQ(WaitExitCode(run.pid), 130);
   EXPECT_FALSE(fs::exists(table));
-  // The journal holds every point that finished, nothing torn.
+  // The journal holds every point that finished, nothing torn: those of the stop and the ones
+  // the workers were on.
   const gen::JournalContents contents = gen::ParseJournal(test::ReadFile(journal), "j");
   EXPECT_EQ(contents.valid_bytes, contents.file_bytes);
-  EXPECT_GE(contents.records.size(), 2u);
+  EXPECT_GE(contents.records.size(), run.records);
+  EXPECT_LT(contents.records.size(), kKillScenePoints);
 
   // The same again through a shell, to see the message.
   const test::CommandResult refused = test::RunCommand(Generate(scene_, table), dir_->path());
@@ -157,10 +229,11 @@ TEST_F(CliGenerateTest, InterruptionMessageNamesTheResumeCommand) {
   // A journal left by an in-process run cut short, continued by the CLI, interrupted again by
   // SIGTERM: the message must give the command to continue.
   const fs::path table = *dir_ / "message.h5";
-  const pid_t pid = Spawn({"generate", scene_.string(), "-o", table.string(), "--threads", "1"});
-  ASSERT_TRUE(WaitForRecords(pid, table.string() + ".journal", 1));
-  kill(pid, SIGTERM);
-  EXPECT_EQ(WaitExitCode(pid), 130);
+  const CaughtRun run = StartAndCatch(scene_, table, 1, 1);
+  ASSERT_GT(run.pid, 0) << "the run could not be caught before it ended";
+  kill(run.pid, SIGTERM);
+  kill(run.pid, SIGCONT);
+  EXPECT_EQ(WaitExitCode(run.pid), 130);
   const test::CommandResult resumed =
       test::RunCommand(Generate(scene_, table, "--resume --threads 1"), dir_->path());
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -170,7 +243,7 @@ TEST_F(CliGenerateTest, InterruptionMessageNamesTheResumeCommand) {
 TEST_F(CliGenerateTest, TwoMpiRanksGiveTheSameTableAsOneProcess) {
   if (!GeneratorSupportsMpi()) GTEST_SKIP() << "wrc was built without MPI support";
   const fs::path table = *dir_ / "mpi.h5";
-  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe -n 2 ";
+  const std::string mpirun = Mpirun();
   const test::CommandResult result =
       test::RunCommand(mpirun + Generate(scene_, table, "--threads 1 --quiet"), dir_->path());
   ASSERT_EQ(result.exit_code, 0) << result.out << result.err;

@@ -148,27 +148,57 @@ TEST_F(ErrorMessages, MissingProfileFile) {
                                     "rail.profile = \"no_such_rail.prr\"", "not found"});
 }
 
-TEST_F(ErrorMessages, GarbageProfile) {
+// A broken profile is reported at the case key that names it: the message starts with the case
+// file, line, key and value as written, then gives the profile's own file, line and problem.
+class ProfileErrorMessages : public ErrorMessages {
+ protected:
+  // Solves the valid case reading its rail from `rail_file` (written next to the case) and
+  // expects exit code 2 and a message that starts with the case's location and key and holds
+  // every one of `parts`.
+  void ExpectRailError(const std::string& rail_file, const std::vector<std::string>& parts) {
+    int line = 0;
+    const fs::path case_file = WriteCaseWithRail(rail_file, &line);
+    const WrcRun run = Solve(case_file);
+    const std::string prefix = "wrc solve: error: " + case_file.string() + ":" +
+                               std::to_string(line) + ": rail.profile = \"" + rail_file + "\": ";
+    EXPECT_EQ(run.err.rfind(prefix, 0), 0u) << run.err << "\nexpected to start with " << prefix;
+    ExpectBadInput(run, parts);
+  }
+};
+
+TEST_F(ProfileErrorMessages, GarbageProfile) {
   WriteFile("garbage.prr", "this is not a profile\n\x01\x02\x7f binary junk\n");
-  const WrcRun run = Solve(WriteCaseWithRail("garbage.prr"));
-  ExpectBadInput(run, {"garbage.prr:", "not a Simpack profile"});
+  ExpectRailError("garbage.prr", {(dir_ / "garbage.prr:2:").string(), "not a Simpack profile"});
 }
 
-TEST_F(ErrorMessages, TextInProfileData) {
+TEST_F(ProfileErrorMessages, TextInProfileData) {
   WriteFile("rail.csv", "y,z\n-10,0\n-5,0.1\n0,0\nfive,0.1\n10,0\n");
-  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")), {"rail.csv:5:", "'five' is not a number"});
+  ExpectRailError("rail.csv",
+                  {(dir_ / "rail.csv:5:").string(), "'five' is not a number (in 'five,0.1')"});
 }
 
-TEST_F(ErrorMessages, NanInProfile) {
+TEST_F(ProfileErrorMessages, NanInProfile) {
   WriteFile("rail.csv", "-10,0\n-5,0.1\n0,nan\n5,0.1\n10,0\n");
-  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")),
-                 {"rail.csv:3:", "'nan' is not a finite number"});
+  ExpectRailError("rail.csv",
+                  {(dir_ / "rail.csv:3:").string(), "value 'nan' is not a finite number"});
 }
 
-TEST_F(ErrorMessages, ProfileWithTwoPoints) {
+TEST_F(ProfileErrorMessages, ProfileWithTwoPoints) {
   WriteFile("rail.csv", "-10,0\n10,0\n");
-  ExpectBadInput(Solve(WriteCaseWithRail("rail.csv")),
-                 {"rail.csv:2:", "only 2 profile point(s)", "at least 4"});
+  ExpectRailError("rail.csv",
+                  {(dir_ / "rail.csv:2:").string(), "only 2 profile point(s)", "at least 4"});
+}
+
+TEST_F(ProfileErrorMessages, ProfileUnits) {
+  // A Simpack rail whose units.len.f is not positive, and a table in metres.
+  WriteFile("units.prr",
+            "spline.begin\n units.len.f = 0\n point.begin\n 0 0\n 5 0\n 10 0\n 15 0\n"
+            " point.end\nspline.end\n");
+  ExpectRailError("units.prr",
+                  {(dir_ / "units.prr:2:").string(), "units.len.f = '0' must be positive"});
+  WriteFile("metres.csv", "-0.01,0\n-0.005,0.0001\n0,0\n0.005,0.0001\n0.01,0\n");
+  ExpectRailError("metres.csv",
+                  {(dir_ / "metres.csv").string(), "profile length 0.02", "outside [5, 500] mm"});
 }
 
 TEST_F(ErrorMessages, UnknownKey) {

@@ -390,7 +390,16 @@ INSTANTIATE_TEST_SUITE_P(
                 {"unterminated.prr:10:", "point.end"}},
         BadFile{"one_column.csv", "0\n1\n2\n3\n4\n", {"one_column.csv:5:", "two columns"}},
         BadFile{
-            "metres.csv", "0,0\n0.001,0\n0.002,0\n0.003,0\n", {"metres.csv", "outside [5, 500]"}}),
+            "metres.csv", "0,0\n0.001,0\n0.002,0\n0.003,0\n", {"metres.csv", "outside [5, 500]"}},
+        // Simpack settings refused name their line and value as written.
+        BadFile{"units.prr",
+                "spline.begin\n  units.len.f = -1e3\n  point.begin\n0 0\n5 0\n10 0\n15 0\n"
+                "  point.end\nspline.end\n",
+                {"units.prr:2:", "units.len.f = '-1e3' must be positive"}},
+        BadFile{"rotate.prr",
+                "spline.begin\n  units.len.f = 1000.\n  rotate = 0.5\n  point.begin\n0 0\n5 0\n"
+                "10 0\n15 0\n  point.end\nspline.end\n",
+                {"rotate.prr:3:", "rotate = '0.5'", "not supported"}}),
     [](const auto& info) {
       std::string name = info.param.name;
       for (char& c : name) {
@@ -408,6 +417,30 @@ TEST(ProfileMalformedFile, MissingFileNamesTheFile) {
     EXPECT_NE(std::string(error.what()).find("no_such_profile.prr"), std::string::npos);
     EXPECT_NE(std::string(error.what()).find("no such file"), std::string::npos);
   }
+}
+
+// Option values in messages read as they were given (not rounded to 6 digits by %g).
+TEST(ProfileMalformedFile, InvalidOptionValuesAppearAsGiven) {
+  const auto message_of = [](const ProfileOptions& options) -> std::string {
+    try {
+      ReadProfile(ProfilePath("circ_r100.prr"), ProfileKind::kRail, options);
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  ProfileOptions options;
+  options.smoothing = -0.1234567;
+  EXPECT_NE(message_of(options).find("smoothing -0.1234567 must be"), std::string::npos)
+      << message_of(options);
+  options = {};
+  options.zigzag_threshold_deg = 180.0000001;
+  EXPECT_NE(message_of(options).find("zig-zag threshold 180.0000001°"), std::string::npos)
+      << message_of(options);
+  options = {};
+  options.kink_width = -2.5e-7;
+  EXPECT_NE(message_of(options).find("kink_width -2.5e-07 mm"), std::string::npos)
+      << message_of(options);
 }
 
 TEST(ProfileMalformedFile, InvalidOptionsAreRejected) {

@@ -497,6 +497,83 @@ TEST(CaseIo, LoadChecksFiles) {
   fs::remove_all(dir);
 }
 
+// A profile file that exists but does not read as a profile is reported at the case key that
+// names it, with the case file and line, the value as written and the profile's own file, line
+// and problem (issue 9); the wheel, mirrored or not, is checked the same way.
+TEST(CaseIo, LoadReportsBrokenProfilesAtTheirCaseKey) {
+  const fs::path dir = fs::temp_directory_path() / "wrc_case_io_broken_profile";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "profiles");
+  const fs::path shared = fs::path(WRC_SHARED_DIR) / "profiles";
+  fs::copy_file(shared / "MBench_UIC60_v3.prr", dir / "profiles" / "rail.prr");
+  fs::copy_file(shared / "MBench_S1002_v3.prw", dir / "profiles" / "wheel.prw");
+  const fs::path file = dir / "case.toml";
+  const auto write_case = [&file](const std::string& text) { std::ofstream(file) << text; };
+  const auto load_error = [&file]() -> std::string {
+    try {
+      LoadCase(file);
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  // The base loads: the shared profiles are good.
+  write_case(kWheelRailCase);
+  ASSERT_EQ(load_error(), "");
+
+  struct Broken {
+    std::string name, contents, problem;
+  };
+  const std::vector<Broken> broken = {
+      {"text.csv", "y,z\n-10,0\n-5,0.1\n0,0\nfive,0.1\n10,0\n",
+       "text.csv:5: 'five' is not a number (in 'five,0.1')"},
+      {"nan.csv", "-10,0\n-5,0.1\n0,nan\n5,0.1\n10,0\n",
+       "nan.csv:3: value 'nan' is not a finite number"},
+      {"two.csv", "-10,0\n10,0\n", "two.csv:2: only 2 profile point(s)"},
+      {"empty.csv", "\n", "empty.csv:1: the profile file is empty"},
+      {"garbage.prr", "not a profile\n", "garbage.prr:1: no point.begin ... point.end block"},
+      {"units.prr",
+       "spline.begin\n units.len.f = -5\n point.begin\n 0 0\n 5 0\n 10 0\n 15 0\n point.end\n"
+       "spline.end\n",
+       "units.prr:2: units.len.f = '-5' must be positive"},
+      {"metres.csv", "0,0\n0.001,0\n0.002,0\n0.003,0\n",
+       "metres.csv: profile length 0.003 mm is outside [5, 500] mm"},
+  };
+  for (const Broken& b : broken) {
+    SCOPED_TRACE(b.name);
+    std::ofstream(dir / "profiles" / b.name) << b.contents;
+    const std::string text = Replace(kWheelRailCase, "profile = \"profiles/rail.prr\"",
+                                     "profile = \"profiles/" + b.name + "\"");
+    write_case(text);
+    const std::string message = load_error();
+    const std::string key = file.string() + ":" +
+                            std::to_string(LineOf(text, "profiles/" + b.name)) +
+                            ": rail.profile = \"profiles/" + b.name + "\": ";
+    EXPECT_EQ(message.rfind(key, 0), 0u) << message << "\nexpected to start with " << key;
+    EXPECT_NE(message.find((dir / "profiles" / b.name).string() + ":"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find(b.problem), std::string::npos) << message << "\nexpected " << b.problem;
+  }
+
+  // The wheel, with mirror_y: a wheel profile of 2 points.
+  const std::string wheel_text = Replace(
+      Replace(kWheelRailCase, "profile = \"profiles/wheel.prw\"", "profile = \"profiles/two.csv\""),
+      "[track]", "mirror_y = true\n[track]");
+  write_case(wheel_text);
+  const std::string wheel_message = load_error();
+  EXPECT_NE(wheel_message.find(file.string() + ":" +
+                               std::to_string(LineOf(wheel_text, "profiles/two.csv")) +
+                               ": wheel.profile = \"profiles/two.csv\": "),
+            std::string::npos)
+      << wheel_message;
+  EXPECT_NE(wheel_message.find("two.csv:2: only 2 profile point(s)"), std::string::npos)
+      << wheel_message;
+
+  // ParseCase does not read the files at all (a table carries its profiles along).
+  EXPECT_NO_THROW(ParseCase(wheel_text, dir, "case.toml"));
+  fs::remove_all(dir);
+}
+
 TEST(CaseIo, RejectsSpinWhoseOmegaOverflows) {
   // Found by tests/fuzz/fuzz_case: every value finite, yet omega = -(velocity / nominal_radius)
   // · (1 + spin) overflowed to -inf and the case was accepted.

@@ -375,6 +375,24 @@ TEST(SceneIo, LoadSceneResolvesProfilesNextToTheFile) {
     EXPECT_NE(std::string(error.what()).find(":4: rail.profile"), std::string::npos)
         << error.what();
   }
+
+  // A wheel profile that exists but is no profile: the message names the scene's key and line
+  // before the profile's own file, line and problem.
+  std::ofstream(scene_dir / "two.csv") << "-10,0\n10,0\n";
+  const std::string absolute_wheel = "profile = \"" + (dir / "MBench_S1002_v3.prw").string() + "\"";
+  std::string broken = text;
+  broken.replace(broken.find(absolute_wheel), absolute_wheel.size(), "profile = \"two.csv\"");
+  std::ofstream(file) << broken;
+  try {
+    LoadScene(file);
+    ADD_FAILURE() << "broken wheel profile not reported";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(file.string() + ":6: wheel.profile = \"two.csv\": " +
+                           (scene_dir / "two.csv").string() + ":2: only 2 profile point(s)"),
+              std::string::npos)
+        << message;
+  }
   fs::remove_all(scene_dir.parent_path());
 }
 
