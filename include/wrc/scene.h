@@ -70,7 +70,8 @@ Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values);
 /// The case at a grid node, one index per axis. Throws std::out_of_range for a bad index.
 Case CaseAtIndex(const Scene& scene, const std::vector<std::size_t>& indices);
 
-/// Reads and validates a scene file. Also checks that the profile files exist.
+/// Reads and validates a scene file. Also reads both profiles (as the solver will), so that a
+/// malformed profile is reported at the scene key that names it, before any point is solved.
 /// Throws InputError with a message "file:line: key = value: problem".
 Scene LoadScene(const std::filesystem::path& path);
 
