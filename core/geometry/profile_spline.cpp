@@ -421,6 +421,8 @@ ProfileSpline& ProfileSpline::operator=(const ProfileSpline& other) {
 ProfileSpline::ProfileSpline(ProfileSpline&& other) noexcept = default;
 ProfileSpline& ProfileSpline::operator=(ProfileSpline&& other) noexcept = default;
 
+const std::string& ProfileSpline::source() const { return impl_->source; }
+
 ProfileKind ProfileSpline::kind() const { return impl_->kind; }
 double ProfileSpline::length() const { return impl_->s.back(); }
 const std::vector<double>& ProfileSpline::knots() const { return impl_->s; }

@@ -197,11 +197,12 @@ void RequireNonNegative(const Section& section, std::string_view key, double val
 /// reported with the key that names it, before any solve:
 /// `case.toml:4: rail.profile = "rail.csv": /.../rail.csv:5: 'five' is not a number ...`.
 /// Costs about 1-2 ms per profile.
-void CheckProfileContents(const Section& section, const ProfileSource& profile, ProfileKind kind) {
+void CheckProfileContents(const Section& section, ProfileSource& profile, ProfileKind kind) {
   ProfileOptions options;
   options.mirror_y = profile.mirror_y;
   try {
-    const ProfileSpline spline(wrc::ReadProfile(profile.path.string(), kind, options));
+    profile.spline = std::make_shared<const ProfileSpline>(
+        wrc::ReadProfile(profile.path.string(), kind, options));
   } catch (const InputError& error) {
     section.Fail("profile", error.what());
   }

@@ -24,7 +24,11 @@ constexpr double kScanStep = 0.05;
 
 }  // namespace
 
-PlacedRail::PlacedRail(Profile profile, const Track& track) : spline_(profile) {
+PlacedRail::PlacedRail(Profile profile, const Track& track)
+    : PlacedRail(std::make_shared<const ProfileSpline>(profile), track) {}
+
+PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track& track)
+    : spline_(std::move(spline)) {
   rotation_ = -track.cant;  // the right rail leans towards the track centre
   R_TR_ = RotationYZ(rotation_);
   if (track.absolute_placement()) {
@@ -34,19 +38,19 @@ PlacedRail::PlacedRail(Profile profile, const Track& track) : spline_(profile) {
   // Gauge point computation: after the rotation, shift the rail up until its highest point
   // touches the track plane (z = 0) and sideways until its inner face, at gauge_height below
   // the track plane, lies at gauge_width/2.
-  const int n = std::max(2, static_cast<int>(std::ceil(spline_.length() / kScanStep)));
+  const int n = std::max(2, static_cast<int>(std::ceil(spline_->length() / kScanStep)));
   double zmin = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= n; ++k) {
-    const double s = spline_.length() * k / n;
-    zmin = std::min(zmin, (R_TR_ * ToEigen(spline_.PositionAt(s)))(1));
+    const double s = spline_->length() * k / n;
+    zmin = std::min(zmin, (R_TR_ * ToEigen(spline_->PositionAt(s)))(1));
   }
   const double z_shift = -zmin;
   double y_gauge = std::numeric_limits<double>::infinity();
   auto height = [&](double s) {
-    return (R_TR_ * ToEigen(spline_.PositionAt(s)))(1) + z_shift - track.gauge_height;
+    return (R_TR_ * ToEigen(spline_->PositionAt(s)))(1) + z_shift - track.gauge_height;
   };
   for (int k = 0; k < n; ++k) {
-    double a = spline_.length() * k / n, b = spline_.length() * (k + 1) / n;
+    double a = spline_->length() * k / n, b = spline_->length() * (k + 1) / n;
     double fa = height(a), fb = height(b);
     if ((fa > 0.0) == (fb > 0.0)) continue;
     for (int it = 0; it < 60; ++it) {  // bisection to 1e-18 of the step: exact enough
@@ -58,10 +62,10 @@ PlacedRail::PlacedRail(Profile profile, const Track& track) : spline_(profile) {
         b = m;
       }
     }
-    y_gauge = std::min(y_gauge, (R_TR_ * ToEigen(spline_.PositionAt(0.5 * (a + b))))(0));
+    y_gauge = std::min(y_gauge, (R_TR_ * ToEigen(spline_->PositionAt(0.5 * (a + b))))(0));
   }
   if (!std::isfinite(y_gauge)) {
-    throw InputError("rail profile " + profile.source + " does not reach the gauge height " +
+    throw InputError("rail profile " + spline_->source() + " does not reach the gauge height " +
                      FormatNumber(track.gauge_height) + " mm below its top: set " +
                      "track.gauge_height <= 0 and place the rail with rail_y/rail_z");
   }
@@ -69,11 +73,11 @@ PlacedRail::PlacedRail(Profile profile, const Track& track) : spline_(profile) {
 }
 
 Eigen::Vector2d PlacedRail::PositionAt(double s) const {
-  return p_TRo_T_ + R_TR_ * ToEigen(spline_.PositionAt(s));
+  return p_TRo_T_ + R_TR_ * ToEigen(spline_->PositionAt(s));
 }
 
 Eigen::Vector2d PlacedRail::TangentAt(double s) const {
-  return R_TR_ * ToEigen(spline_.TangentAt(s));
+  return R_TR_ * ToEigen(spline_->TangentAt(s));
 }
 
 double PlacedRail::InclinationAt(double s) const {
@@ -88,7 +92,7 @@ Eigen::Vector2d PlacedRail::ToRail(const Eigen::Vector2d& p_T) const {
 std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0, const Eigen::Vector2d& n,
                                                 double s_guess) const {
   // f(s) = (P(s) − p0) × n = 0, Newton with f'(s) = t(s) × n.
-  double s = std::clamp(s_guess, 0.0, spline_.length());
+  double s = std::clamp(s_guess, 0.0, spline_->length());
   for (int it = 0; it < 50; ++it) {
     const Eigen::Vector2d d = PositionAt(s) - p0;
     const Eigen::Vector2d t = TangentAt(s);
@@ -97,7 +101,7 @@ std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0, const
     if (std::fabs(df) < 1e-12) return std::nullopt;
     const double step = -f / df;
     s += step;
-    if (s < 0.0 || s > spline_.length()) return std::nullopt;
+    if (s < 0.0 || s > spline_->length()) return std::nullopt;
     if (std::fabs(step) < 1e-11) return s;
   }
   return std::nullopt;

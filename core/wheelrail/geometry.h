@@ -20,9 +20,10 @@ namespace wrc::wr {
 class PlacedRail {
  public:
   PlacedRail(Profile profile, const Track& track);
+  PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track& track);
 
-  const ProfileSpline& spline() const { return spline_; }
-  double length() const { return spline_.length(); }
+  const ProfileSpline& spline() const { return *spline_; }
+  double length() const { return spline_->length(); }
   /// Rail origin in the track frame (y, z), mm.
   const Eigen::Vector2d& origin() const { return p_TRo_T_; }
   /// Installation rotation about x, rad (−cant for the right rail).
@@ -43,7 +44,7 @@ class PlacedRail {
                                       double s_guess) const;
 
  private:
-  ProfileSpline spline_;
+  std::shared_ptr<const ProfileSpline> spline_;
   double rotation_ = 0.0;
   Eigen::Matrix2d R_TR_;
   Eigen::Vector2d p_TRo_T_;

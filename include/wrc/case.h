@@ -7,6 +7,7 @@
 /// Member defaults are the defaults of SPEC §2 ("keys not listed take the defaults shown").
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,6 +16,8 @@
 #include "wrc/material.h"
 
 namespace wrc {
+
+class ProfileSpline;
 
 /// `problem.type`.
 enum class CaseType {
@@ -57,6 +60,10 @@ struct ProfileSource {
   /// As written in the case file, for messages and for storing the profile under its name.
   std::string path_as_written;
   bool mirror_y = false;  ///< Mirror the profile in y before use.
+  /// The profile as LoadCase / LoadScene read it (mirrored when asked), shared by every solve of
+  /// the case or scene so that it is read and splined once; null when not read (a Case built
+  /// in code), and the solver then reads `path` itself.
+  std::shared_ptr<const ProfileSpline> spline;
 };
 
 /// `[track]`: placement of the rail.

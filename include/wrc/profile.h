@@ -261,6 +261,8 @@ class ProfileSpline {
   ProfileSpline& operator=(ProfileSpline&& other) noexcept;
 
   ProfileKind kind() const;
+  /// The source file name of the profile (for messages).
+  const std::string& source() const;
   /// Total arc length, mm.
   double length() const;
   /// Arc length s_i of each profile point.

@@ -174,5 +174,20 @@ TEST(WheelRail, DissimilarBodiesAreCoupled) {
   EXPECT_LT(difference, 0.1 * std::fabs(a.force_T(0)));
 }
 
+// LoadCase reads the profiles once and the solver uses them; a case built in code (no spline)
+// is read by the solver itself, with the same result to the last bit.
+TEST(WheelRail, ProfilesReadByLoadCaseAreReused) {
+  const Case loaded = Manchester(4.0, ReferenceSurface::kCurved);
+  ASSERT_TRUE(loaded.rail.spline);
+  ASSERT_TRUE(loaded.wheel.spline);
+  Case from_files = loaded;
+  from_files.rail.spline.reset();
+  from_files.wheel.spline.reset();
+  const WheelRailResult a = SolveWheelRail(loaded);
+  const WheelRailResult b = SolveWheelRail(from_files);
+  EXPECT_EQ(a.force_T, b.force_T);
+  EXPECT_EQ(a.moment_T, b.moment_T);
+}
+
 }  // namespace
 }  // namespace wrc
