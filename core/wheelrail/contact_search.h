@@ -33,8 +33,7 @@ struct ContactSearch {
 /// comes within `reach` (mm) of the smallest gap and below `z_limit` (the largest wheelset
 /// shift that will be asked for, when known); samples further away are left invalid.
 ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, double step,
-                            double reach,
-                            double z_limit = std::numeric_limits<double>::infinity());
+                            double reach, double z_limit = std::numeric_limits<double>::infinity());
 
 /// A contact patch: a run of samples [first, last] (indices into the search) that holds one or
 /// more interpenetration regions closer than the combine distance.

@@ -252,8 +252,8 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
     return out;
   };
   if (!reuse) {
-    cache.normal_operator =
-        std::make_unique<FftInfluenceOperator>(box, ctx.material, std::vector<InfluenceComponent>{InfluenceComponent::kNN});
+    cache.normal_operator = std::make_unique<FftInfluenceOperator>(
+        box, ctx.material, std::vector<InfluenceComponent>{InfluenceComponent::kNN});
     cache.rolling_operator.reset();
   }
   const FftInfluenceOperator& op = *cache.normal_operator;

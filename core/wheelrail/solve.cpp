@@ -220,12 +220,13 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   // Profiles already read by LoadCase / LoadScene are shared; a case built in code is read here.
   pb.rail = std::make_unique<PlacedRail>(
       c.rail.spline ? c.rail.spline
-                    : std::make_shared<const ProfileSpline>(ReadProfile(
-                          c.rail.path.string(), ProfileKind::kRail, rail_options)),
+                    : std::make_shared<const ProfileSpline>(
+                          ReadProfile(c.rail.path.string(), ProfileKind::kRail, rail_options)),
       c.track);
-  pb.wheel_spline = c.wheel.spline ? c.wheel.spline
-                                   : std::make_shared<const ProfileSpline>(ReadProfile(
-                                         c.wheel.path.string(), ProfileKind::kWheel, wheel_options));
+  pb.wheel_spline = c.wheel.spline
+                        ? c.wheel.spline
+                        : std::make_shared<const ProfileSpline>(ReadProfile(
+                              c.wheel.path.string(), ProfileKind::kWheel, wheel_options));
 
   // A left case is solved as the mirror image of a right one (CONTACT does the same).
   pb.mirror = c.wheelset.side == WheelSide::kLeft ? -1.0 : 1.0;
