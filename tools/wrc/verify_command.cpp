@@ -9,16 +9,19 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "runtime/hdf5/hdf5.h"
 #include "tools/wrc/commands.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/profile.h"
 #include "wrc/runtime.hpp"
 #include "wrc/scene.h"
 
@@ -71,6 +74,14 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
   stored->scene = ParseScene(text, stored->scratch, table.string() + ":/scene");
   RestoreProfile(file, "rail", stored->scene.base.rail.path);
   RestoreProfile(file, "wheel", stored->scene.base.wheel.path);
+  // Read and spline the profiles once for all sampled points (as LoadScene does).
+  for (auto [source, kind] : {std::pair{&stored->scene.base.rail, ProfileKind::kRail},
+                              std::pair{&stored->scene.base.wheel, ProfileKind::kWheel}}) {
+    ProfileOptions options;
+    options.mirror_y = source->mirror_y;
+    source->spline =
+        std::make_shared<const ProfileSpline>(ReadProfile(source->path.string(), kind, options));
+  }
   return stored;
 }
 
