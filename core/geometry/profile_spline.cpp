@@ -185,15 +185,22 @@ struct ProfileSpline::Impl {
   /// Adds the roots of y(s) = y on knot interval k to `roots`. Each monotone sub-interval owns
   /// its left end; the right end of the whole curve is added by FinishRoots.
   void AddRootsInInterval(std::size_t k, double y, std::vector<double>& roots) const {
+    ForEachRootInInterval(k, y, [&](double t) { roots.push_back(s[k] + t); });
+  }
+
+  /// Calls found(t) for each root t (relative to s_k) of y(s) = y on knot interval k, with the
+  /// convention of AddRootsInInterval.
+  template <typename Found>
+  void ForEachRootInInterval(std::size_t k, double y, Found found) const {
     const YPiece& piece = pieces[k];
     if (y < piece.y_min || y > piece.y_max) return;
     for (std::size_t b = 0; b + 1 < piece.bound_count; ++b) {
       const double f_lo = piece.y.Value(piece.bounds[b]) - y;
       const double f_hi = piece.y.Value(piece.bounds[b + 1]) - y;
       if (f_lo == 0.0) {
-        roots.push_back(s[k] + piece.bounds[b]);
+        found(piece.bounds[b]);
       } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
-        roots.push_back(s[k] + SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
+        found(SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
       }
     }
   }
@@ -505,34 +512,29 @@ ProfileHeight ProfileSpline::ZAtY(double y) const {
     double s, z, dz_dy;
   };
   constexpr std::size_t kCapacity = 16;
-  std::array<Root, kCapacity> roots;
+  std::array<Root, kCapacity> inline_roots;
+  std::vector<Root> spilled;  // only for a profile crossing y more than kCapacity times
+  Root* roots = inline_roots.data();
   std::size_t count = 0;
-  bool overflow = false;
   auto add = [&](const YPiece& piece, std::size_t k, double t) {
-    if (count == kCapacity) {
-      overflow = true;
-      return;
-    }
     const double dy = piece.y.Slope(t), dz = piece.z.Slope(t);
-    roots[count++] = {std::clamp(impl.s[k] + t, 0.0, impl.s.back()), piece.z.Value(t),
-                      std::fabs(dy) > 1e-12 * std::fabs(dz) ? dz / dy : 1e12};
+    const Root root{std::clamp(impl.s[k] + t, 0.0, impl.s.back()), piece.z.Value(t),
+                    std::fabs(dy) > 1e-12 * std::fabs(dz) ? dz / dy : 1e12};
+    if (count == kCapacity && spilled.empty()) spilled.assign(roots, roots + count);
+    if (!spilled.empty()) {
+      spilled.push_back(root);
+      roots = spilled.data();
+    } else {
+      roots[count] = root;
+    }
+    ++count;
   };
   if (y >= impl.y_min && y <= impl.y_max) {
     const YTable& table = impl.table;
     const std::size_t bucket = table.Bucket(y);
     for (std::size_t e = table.begin[bucket]; e < table.begin[bucket + 1]; ++e) {
       const std::size_t k = table.intervals[e];
-      const YPiece& piece = impl.pieces[k];
-      if (y < piece.y_min || y > piece.y_max) continue;
-      for (std::size_t b = 0; b + 1 < piece.bound_count; ++b) {
-        const double f_lo = piece.y.Value(piece.bounds[b]) - y;
-        const double f_hi = piece.y.Value(piece.bounds[b + 1]) - y;
-        if (f_lo == 0.0) {
-          add(piece, k, piece.bounds[b]);
-        } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
-          add(piece, k, SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
-        }
-      }
+      impl.ForEachRootInInterval(k, y, [&](double t) { add(impl.pieces[k], k, t); });
     }
   }
   if (impl.last_y == y) {
@@ -540,30 +542,12 @@ ProfileHeight ProfileSpline::ZAtY(double y) const {
     add(last, impl.pieces.size() - 1, last.y.h);
   }
   ProfileHeight result;
-  if (overflow) {
-    // More crossings than the buffer holds (a pathological profile): the general path.
-    const std::vector<double> all = SAtY(y);
-    result.status =
-        all.size() == 1 ? ProfileHeight::Status::kInside : ProfileHeight::Status::kMultiValued;
-    const bool rail = impl.kind == ProfileKind::kRail;
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      const double z = impl.PartAt(all[i]).z.Value(all[i]);
-      if (i == 0 || (rail ? z < result.z : z > result.z)) {
-        result.z = z;
-        result.s = all[i];
-        const ProfileVector t = TangentAt(all[i]);
-        result.dz_dy = std::fabs(t.y) > 1e-12 ? t.z / t.y : 1e12;
-      }
-    }
-    return result;
-  }
   if (count == 0) {
     result.status = ProfileHeight::Status::kOutside;
     result.z = result.s = result.dz_dy = std::numeric_limits<double>::quiet_NaN();
     return result;
   }
-  std::sort(roots.begin(), roots.begin() + count,
-            [](const Root& a, const Root& b) { return a.s < b.s; });
+  std::sort(roots, roots + count, [](const Root& a, const Root& b) { return a.s < b.s; });
   // A root on a knot or critical point can be found from both sides (as in SAtY).
   std::size_t distinct = 1;
   for (std::size_t i = 1; i < count; ++i) {

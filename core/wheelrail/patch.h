@@ -18,8 +18,9 @@ struct PatchCache {
   std::unique_ptr<SteadyRollingOperator> rolling_operator;
   NormalWorkspace normal_workspace;
   TangentialWorkspace tangential_workspace;
-  /// Last solve box, relative to its patch reference, and the solutions found on it.
-  Grid box;
+  /// The last converged solutions, each with the solve box (relative to its patch reference)
+  /// it was found on.
+  Grid normal_box, tangential_box;
   NormalSolution normal;
   TangentialSolution tangential;
   bool has_normal = false, has_tangential = false;

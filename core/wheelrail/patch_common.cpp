@@ -262,7 +262,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   NormalSolution ns;
   NormalOptions normal_options = ctx.options->normal;
   if (cache.has_normal) {
-    Remap(cache.box, cache.normal.pressure, box, ns.pressure);
+    Remap(cache.normal_box, cache.normal.pressure, box, ns.pressure);
     normal_options.warm_start = true;
   }
   const auto t1 = Clock::now();
@@ -288,17 +288,8 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
     result.n_slip = result.n_contact;
     if (normal.status != SolverStatus::kNotConverged) {
       cache.normal = std::move(ns);
+      cache.normal_box = box;
       cache.has_normal = true;
-      if (!(cache.box.nx == box.nx && cache.box.ny == box.ny && cache.box.x0 == box.x0 &&
-            cache.box.y0 == box.y0)) {
-        // The tangential warm start belongs to the old box.
-        std::vector<double> moved;
-        Remap(cache.box, cache.tangential.px, box, moved);
-        cache.tangential.px.swap(moved);
-        Remap(cache.box, cache.tangential.py, box, moved);
-        cache.tangential.py.swap(moved);
-      }
-      cache.box = box;
     }
     return;
   }
@@ -318,8 +309,8 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   TangentialSolution ts;
   TangentialOptions tangential_options = ctx.options->tangential;
   if (cache.has_tangential) {
-    Remap(cache.box, cache.tangential.px, box, ts.px);
-    Remap(cache.box, cache.tangential.py, box, ts.py);
+    Remap(cache.tangential_box, cache.tangential.px, box, ts.px);
+    Remap(cache.tangential_box, cache.tangential.py, box, ts.py);
     tangential_options.warm_start = true;
   }
   const TangentialSummary summary =
@@ -347,8 +338,8 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
       summary.status != SolverStatus::kNotConverged) {
     cache.normal = std::move(ns);
     cache.tangential = std::move(ts);
+    cache.normal_box = cache.tangential_box = box;
     cache.has_normal = cache.has_tangential = true;
-    cache.box = box;
   }
 }
 

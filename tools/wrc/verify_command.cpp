@@ -85,6 +85,18 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
   return stored;
 }
 
+// Spread (max − min) of the finite values, or `if_flat` when there is none.
+double FiniteRange(const std::vector<double>& values, double if_flat) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (double v : values) {
+    if (std::isfinite(v)) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  return hi > lo ? hi - lo : if_flat;
+}
+
 // Sample points: uniform, or a Latin hypercube (each axis range cut into N strata, one sample
 // per stratum, strata shuffled independently per axis).
 std::vector<std::vector<double>> Sample(const std::vector<std::vector<double>>& axes, int n,
@@ -121,16 +133,7 @@ std::vector<std::vector<double>> SampleNearJumps(const std::vector<std::vector<d
     total *= shape[a];
   }
   std::vector<double> range(outputs.size(), 0.0);
-  for (std::size_t o = 0; o < outputs.size(); ++o) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (double v : outputs[o]) {
-      if (std::isfinite(v)) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    }
-    range[o] = hi > lo ? hi - lo : 1.0;
-  }
+  for (std::size_t o = 0; o < outputs.size(); ++o) range[o] = FiniteRange(outputs[o], 1.0);
   std::vector<std::pair<double, std::size_t>> edges;  // (jump, lower node) per axis-edge
   std::vector<int> edge_axis;
   for (std::size_t node = 0; node < total; ++node) {
@@ -215,14 +218,7 @@ int RunVerify(const VerifyOptions& opt) {
   std::vector<double> range(n_out, 0.0);
   for (int o = 0; o < n_out; ++o) {
     values[o] = outputs_group.OpenDataset(table.output_name(o)).Read<double>();
-    double lo = INFINITY, hi = -INFINITY;
-    for (double v : values[o]) {
-      if (std::isfinite(v)) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    }
-    range[o] = hi > lo ? hi - lo : 0.0;
+    range[o] = FiniteRange(values[o], 0.0);
   }
   const std::vector<std::vector<double>> points =
       opt.near_jumps ? SampleNearJumps(axes, values, opt.samples, opt.seed)
