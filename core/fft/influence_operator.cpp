@@ -1,7 +1,6 @@
 #include "wrc/influence_operator.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 #include "core/fft/fftw.h"
@@ -9,7 +8,7 @@
 namespace wrc {
 
 struct ConvolutionWorkspace::Buffers {
-  fftw::RealBuffer padded;
+  fftw::ComplexBuffer rows;
   fftw::ComplexBuffer spectrum_a;
   fftw::ComplexBuffer spectrum_b;
   fftw::ComplexBuffer spectrum_c;
@@ -20,19 +19,52 @@ ConvolutionWorkspace::~ConvolutionWorkspace() = default;
 ConvolutionWorkspace::ConvolutionWorkspace(ConvolutionWorkspace&&) noexcept = default;
 ConvolutionWorkspace& ConvolutionWorkspace::operator=(ConvolutionWorkspace&&) noexcept = default;
 
+namespace {
+
+// Complex products written out: std::complex's operator* checks for NaN/∞ operands (C99 Annex G)
+// and does not vectorise; spectra here are finite.
+void MultiplyInPlace(const std::vector<std::complex<double>>& k, std::complex<double>* s) {
+  const double* a = reinterpret_cast<const double*>(k.data());
+  double* b = reinterpret_cast<double*>(s);
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    const double ar = a[2 * i], ai = a[2 * i + 1], br = b[2 * i], bi = b[2 * i + 1];
+    b[2 * i] = ar * br - ai * bi;
+    b[2 * i + 1] = ar * bi + ai * br;
+  }
+}
+
+// out = k1·s1 + k2·s2, element by element.
+void MultiplyAdd(const std::complex<double>* k1, const std::complex<double>* s1,
+                 const std::complex<double>* k2, const std::complex<double>* s2,
+                 std::complex<double>* out, std::size_t n) {
+  const double* a = reinterpret_cast<const double*>(k1);
+  const double* b = reinterpret_cast<const double*>(s1);
+  const double* c = reinterpret_cast<const double*>(k2);
+  const double* d = reinterpret_cast<const double*>(s2);
+  double* o = reinterpret_cast<double*>(out);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t r = 2 * i, m = 2 * i + 1;
+    o[r] = a[r] * b[r] - a[m] * b[m] + c[r] * d[r] - c[m] * d[m];
+    o[m] = a[r] * b[m] + a[m] * b[r] + c[r] * d[m] + c[m] * d[r];
+  }
+}
+
+}  // namespace
+
 FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElasticity& material,
                                            const std::vector<InfluenceComponent>& components)
     : grid_(grid), material_(material) {
   grid_.Validate();
   // Linear convolution of n values with offsets −(n−1)…(n−1) is exact as a circular one of
   // length >= 2n − 1; rounded up to a size FFTW transforms fast.
-  const int n1 = fftw::Plan2d::FastSize(2 * grid_.nx - 1);
-  const int n0 = fftw::Plan2d::FastSize(2 * grid_.ny - 1);
-  plan_ = fftw::Plan2d::Shared(n0, n1);
+  const int n1 = fftw::PaddedPlan2d::FastSize(2 * grid_.nx - 1);
+  const int n0 = fftw::PaddedPlan2d::FastSize(2 * grid_.ny - 1);
+  plan_ = fftw::PaddedPlan2d::Shared(n0, n1);
 
-  fftw::RealBuffer kernel(plan_->real_size());
+  fftw::RealBuffer kernel(static_cast<std::size_t>(n0) * n1);
   fftw::ComplexBuffer spectrum(plan_->complex_size());
-  const double inv_n = 1.0 / static_cast<double>(plan_->real_size());
+  fftw::ComplexBuffer rows(plan_->row_buffer_size());
+  const double inv_n = 1.0 / static_cast<double>(kernel.size());
   for (InfluenceComponent c : components) {
     if (has(c)) continue;
     const InfluenceCoefficients coeffs(grid_, material_, c);
@@ -43,7 +75,7 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
         kernel[static_cast<std::size_t>(row) * n1 + (di + n1) % n1] = coeffs.at(di, dj);
       }
     }
-    plan_->Forward(kernel.data(), spectrum.data());
+    plan_->Forward(kernel.data(), n0, n1, spectrum.data(), rows.data());
     auto& s = spectra_[Index(c)];
     s.assign(spectrum.data(), spectrum.data() + spectrum.size());
     for (auto& v : s) v *= inv_n;
@@ -55,7 +87,7 @@ FftInfluenceOperator::~FftInfluenceOperator() = default;
 ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   ConvolutionWorkspace ws;
   ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>();
-  ws.buffers_->padded = fftw::RealBuffer(plan_->real_size());
+  ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size());
   ws.buffers_->spectrum_a = fftw::ComplexBuffer(plan_->complex_size());
   ws.buffers_->spectrum_b = fftw::ComplexBuffer(plan_->complex_size());
   ws.buffers_->spectrum_c = fftw::ComplexBuffer(plan_->complex_size());
@@ -63,30 +95,18 @@ ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
 }
 
 bool FftInfluenceOperator::Fits(const ConvolutionWorkspace& ws) const {
-  return ws.buffers_ && ws.buffers_->padded.size() == plan_->real_size();
+  return ws.buffers_ && ws.buffers_->spectrum_a.size() == plan_->complex_size() &&
+         ws.buffers_->rows.size() == plan_->row_buffer_size();
 }
 
 void FftInfluenceOperator::Forward(const double* in, std::complex<double>* spectrum,
                                    ConvolutionWorkspace& ws) const {
-  double* padded = ws.buffers_->padded.data();
-  const int n1 = plan_->n1();
-  std::fill(padded, padded + plan_->real_size(), 0.0);
-  for (int j = 0; j < grid_.ny; ++j) {
-    std::memcpy(padded + static_cast<std::size_t>(j) * n1, in + grid_.index(0, j),
-                sizeof(double) * grid_.nx);
-  }
-  plan_->Forward(padded, spectrum);
+  plan_->Forward(in, grid_.ny, grid_.nx, spectrum, ws.buffers_->rows.data());
 }
 
 void FftInfluenceOperator::Backward(std::complex<double>* spectrum, double* out,
                                     ConvolutionWorkspace& ws) const {
-  double* padded = ws.buffers_->padded.data();
-  const int n1 = plan_->n1();
-  plan_->Backward(spectrum, padded);
-  for (int j = 0; j < grid_.ny; ++j) {
-    std::memcpy(out + grid_.index(0, j), padded + static_cast<std::size_t>(j) * n1,
-                sizeof(double) * grid_.nx);
-  }
+  plan_->Backward(spectrum, grid_.ny, grid_.nx, out, ws.buffers_->rows.data());
 }
 
 void FftInfluenceOperator::Apply(InfluenceComponent c, const double* in, double* out,
@@ -95,8 +115,7 @@ void FftInfluenceOperator::Apply(InfluenceComponent c, const double* in, double*
   if (!Fits(ws)) throw std::logic_error("convolution workspace does not fit this operator");
   std::complex<double>* s = ws.buffers_->spectrum_a.data();
   Forward(in, s, ws);
-  const auto& k = spectra_[Index(c)];
-  for (std::size_t i = 0; i < k.size(); ++i) s[i] *= k[i];
+  MultiplyInPlace(spectra_[Index(c)], s);
   Backward(s, out, ws);
 }
 
@@ -116,9 +135,9 @@ void FftInfluenceOperator::ApplyTangential(const double* px, const double* py, d
   const auto& kyy = spectra_[Index(C::kYY)];
   const auto& kxy = spectra_[Index(C::kXY)];
   const std::size_t n = kxx.size();
-  for (std::size_t i = 0; i < n; ++i) su[i] = kxx[i] * sx[i] + kxy[i] * sy[i];
+  MultiplyAdd(kxx.data(), sx, kxy.data(), sy, su, n);
   Backward(su, ux, ws);
-  for (std::size_t i = 0; i < n; ++i) su[i] = kxy[i] * sx[i] + kyy[i] * sy[i];
+  MultiplyAdd(kxy.data(), sx, kyy.data(), sy, su, n);
   Backward(su, uy, ws);
 }
 

@@ -16,7 +16,7 @@
 namespace wrc {
 
 namespace fftw {
-class Plan2d;
+class PaddedPlan2d;
 }
 
 /// Scratch memory for FftInfluenceOperator, owned by the caller so that one operator can serve
@@ -69,7 +69,7 @@ class FftInfluenceOperator {
 
   Grid grid_;
   CombinedElasticity material_;
-  std::shared_ptr<const fftw::Plan2d> plan_;
+  std::shared_ptr<const fftw::PaddedPlan2d> plan_;
   // Kernel spectra, scaled by 1/N so that Backward needs no extra pass; empty when not prepared.
   std::array<std::vector<std::complex<double>>, 6> spectra_;
 };
