@@ -23,6 +23,9 @@ struct PatchCache {
   Grid normal_box, tangential_box;
   NormalSolution normal;
   TangentialSolution tangential;
+  /// The pressure the tangential solution was found with (on tangential_box): its tractions are
+  /// scaled by the change of pressure for the next warm start.
+  std::vector<double> tangential_pressure;
   bool has_normal = false, has_tangential = false;
 };
 

@@ -311,6 +311,18 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   if (cache.has_tangential) {
     Remap(cache.tangential_box, cache.tangential.px, box, ts.px);
     Remap(cache.tangential_box, cache.tangential.py, box, ts.py);
+    // Slip tractions are μ·p_n and adhesion tractions grow with the load too: scaled by the
+    // change of pressure, the previous solution starts the next step of a force iteration
+    // closer than unscaled.
+    std::vector<double> p_old;
+    Remap(cache.tangential_box, cache.tangential_pressure, box, p_old);
+    for (std::size_t k = 0; k < p_old.size(); ++k) {
+      if (p_old[k] > 0.0) {
+        const double ratio = ns.pressure[k] / p_old[k];
+        ts.px[k] *= ratio;
+        ts.py[k] *= ratio;
+      }
+    }
     tangential_options.warm_start = true;
   }
   const TangentialSummary summary =
@@ -336,6 +348,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   result.n_adhesion = ts.n_adhesion;
   if (normal.status != SolverStatus::kNotConverged &&
       summary.status != SolverStatus::kNotConverged) {
+    cache.tangential_pressure = ns.pressure;
     cache.normal = std::move(ns);
     cache.tangential = std::move(ts);
     cache.normal_box = cache.tangential_box = box;
