@@ -113,13 +113,17 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
     std::optional<double> sr;
     if (valid[j]) sr = rail.IntersectLine(m[j], n[j], s_rail[j]);
     const double t_rail = sr ? (rail.PositionAt(*sr) - m[j]).dot(n[j]) : 0.0;
+    // Newton for the wheel starts from the neighbour's intersection: one element along x moves
+    // it by ~x·dx/R, against up to the whole interpenetration from the rail's.
+    double t_guess = t_rail;
     for (int i = 0; i < grid.nx; ++i) {
       const std::size_t k = grid.index(i, j);
       mu[k] = mu_j;
       if (!sr) continue;
       const Eigen::Vector3d m3(ref.x + grid.x(i), m[j](0), m[j](1));
-      const auto t_wheel = wheel.IntersectLine(m3, n3, t_rail);
+      const auto t_wheel = wheel.IntersectLine(m3, n3, t_guess);
       if (!t_wheel) continue;
+      t_guess = *t_wheel;
       h[k] = t_rail - *t_wheel;
       if (!ctx.tangential) continue;
       // Material velocities of the rail point P and the wheel point Q of this element, in the
