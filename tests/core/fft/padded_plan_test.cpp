@@ -14,7 +14,7 @@ using Complex = std::complex<double>;
 
 // The 2-D DFT of an n0 × n1 field by its definition, O(n²): the reference for the row-column
 // transform with its row pairing and padding shortcuts.
-std::vector<Complex> NaiveDft(const std::vector<double>& field, int n0, int n1, double sign) {
+std::vector<Complex> NaiveForwardDft(const std::vector<double>& field, int n0, int n1) {
   const double pi = std::acos(-1.0);
   std::vector<Complex> out(static_cast<std::size_t>(n0) * n1);
   for (int k0 = 0; k0 < n0; ++k0) {
@@ -22,7 +22,7 @@ std::vector<Complex> NaiveDft(const std::vector<double>& field, int n0, int n1, 
       Complex sum = 0.0;
       for (int j = 0; j < n0; ++j) {
         for (int i = 0; i < n1; ++i) {
-          const double phase = sign * 2.0 * pi * (double(k0) * j / n0 + double(k1) * i / n1);
+          const double phase = -2.0 * pi * (double(k0) * j / n0 + double(k1) * i / n1);
           sum += field[static_cast<std::size_t>(j) * n1 + i] * std::polar(1.0, phase);
         }
       }
@@ -36,15 +36,21 @@ struct Shape {
   int n0, n1, ny, nx;
 };
 
+// ny × nx values uniform in [−1, 1], reproducible from the seed.
+std::vector<double> RandomField(const Shape& s, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> field(static_cast<std::size_t>(s.ny) * s.nx);
+  for (double& v : field) v = u(rng);
+  return field;
+}
+
 class PaddedPlanTest : public ::testing::TestWithParam<Shape> {};
 
 TEST_P(PaddedPlanTest, ForwardMatchesTheDefinition) {
   const Shape s = GetParam();
   PaddedPlan2d plan(s.n0, s.n1);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> in(static_cast<std::size_t>(s.ny) * s.nx);
-  for (double& v : in) v = u(rng);
+  const std::vector<double> in = RandomField(s, 7);
   std::vector<double> padded(static_cast<std::size_t>(s.n0) * s.n1, 0.0);
   for (int j = 0; j < s.ny; ++j) {
     for (int i = 0; i < s.nx; ++i)
@@ -52,7 +58,7 @@ TEST_P(PaddedPlanTest, ForwardMatchesTheDefinition) {
   }
   ComplexBuffer spectrum(plan.complex_size()), rows(plan.row_buffer_size());
   plan.Forward(in.data(), s.ny, s.nx, spectrum.data(), rows.data());
-  const std::vector<Complex> expected = NaiveDft(padded, s.n0, s.n1, -1.0);
+  const std::vector<Complex> expected = NaiveForwardDft(padded, s.n0, s.n1);
   const int nc = s.n1 / 2 + 1;
   for (int k0 = 0; k0 < s.n0; ++k0) {
     for (int k1 = 0; k1 < nc; ++k1) {
@@ -68,10 +74,7 @@ TEST_P(PaddedPlanTest, ForwardMatchesTheDefinition) {
 TEST_P(PaddedPlanTest, BackwardOfForwardGivesTheFieldTimesTheSize) {
   const Shape s = GetParam();
   PaddedPlan2d plan(s.n0, s.n1);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> in(static_cast<std::size_t>(s.ny) * s.nx);
-  for (double& v : in) v = u(rng);
+  const std::vector<double> in = RandomField(s, 11);
   ComplexBuffer spectrum(plan.complex_size()), rows(plan.row_buffer_size());
   plan.Forward(in.data(), s.ny, s.nx, spectrum.data(), rows.data());
   std::vector<double> out(in.size(), -99.0);
