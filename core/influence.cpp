@@ -92,8 +92,6 @@ double RectangleInfluence(InfluenceComponent c, const CombinedElasticity& m, dou
   throw std::invalid_argument("unknown influence component");
 }
 
-namespace {
-
 // Coefficients depend only on the component, the material, the element size and the offset, so
 // one table per (component, material, dx, dy), grown on demand, serves every grid of a solve
 // (every patch, every vertical force iteration, every point of a table). Values are computed
@@ -106,6 +104,8 @@ struct CoefficientTable {
                   static_cast<std::size_t>(2 * half_x + 1) * static_cast<std::size_t>(dj + half_y)];
   }
 };
+
+namespace {
 
 using TableKey = std::tuple<int, double, double, double, double, double>;
 
@@ -201,14 +201,9 @@ InfluenceCoefficients::InfluenceCoefficients(const Grid& grid, const CombinedEla
                                              InfluenceComponent component)
     : grid_(grid), component_(component) {
   grid_.Validate();
-  const int wx = 2 * grid_.nx - 1;
-  const int wy = 2 * grid_.ny - 1;
-  const auto table = Table(component, material, grid_.dx, grid_.dy, grid_.nx - 1, grid_.ny - 1);
-  values_.resize(static_cast<std::size_t>(wx) * static_cast<std::size_t>(wy));
-  std::size_t k = 0;
-  for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
-    for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) values_[k++] = table->at(di, dj);
-  }
+  table_ = Table(component, material, grid_.dx, grid_.dy, grid_.nx - 1, grid_.ny - 1);
+  stride_ = 2 * table_->half_x + 1;
+  origin_ = table_->values.data() + table_->half_x + stride_ * table_->half_y;
 }
 
 }  // namespace wrc

@@ -140,7 +140,8 @@ std::optional<double> PlacedWheel::IntersectLine(const Eigen::Vector3d& p0,
     const Eigen::Vector3d q = a + t * b;
     const auto r = Radius(q(1) - profile_offset_);
     if (!r || q(2) <= 0.0) return std::nullopt;
-    const double rho = std::hypot(q(0), q(2));
+    // Distances of ~500 mm: no overflow, so the plain root (std::hypot's rescaling is ~20 ns).
+    const double rho = std::sqrt(q(0) * q(0) + q(2) * q(2));
     const double f = rho - r->first;
     const double df = (q(0) * b(0) + q(2) * b(2)) / rho - r->second * b(1);
     if (std::fabs(df) < 1e-12) return std::nullopt;

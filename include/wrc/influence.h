@@ -4,6 +4,8 @@
 /// rectangular elements (Boussinesq for normal, Cerruti for tangential loads), for two bodies
 /// combined as in Kalker's theory (paper §2.7, Eq. 17).
 
+#include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "wrc/grid.h"
@@ -29,9 +31,13 @@ double PointLoadKernel(InfluenceComponent c, const CombinedElasticity& m, double
 double RectangleInfluence(InfluenceComponent c, const CombinedElasticity& m, double X, double Y,
                           double hx, double hy);
 
-/// Coefficients for every offset between two elements of a grid: entry
-/// (di + nx − 1) + (2nx − 1)·(dj + ny − 1) is the response at element (i + di, j + dj) to
-/// unit traction on element (i, j), for di in [−(nx−1), nx−1] and dj in [−(ny−1), ny−1].
+/// Process-wide table of coefficients for one (component, material, dx, dy), influence.cpp.
+struct CoefficientTable;
+
+/// Coefficients for every offset between two elements of a grid: the response at element
+/// (i + di, j + dj) to unit traction on element (i, j), for di in [−(nx−1), nx−1] and dj in
+/// [−(ny−1), ny−1]. A view of the process-wide table (no copy: a table of a large flange patch
+/// is ~0.5 MB per component).
 class InfluenceCoefficients {
  public:
   InfluenceCoefficients(const Grid& grid, const CombinedElasticity& material,
@@ -40,17 +46,18 @@ class InfluenceCoefficients {
   const Grid& grid() const { return grid_; }
   InfluenceComponent component() const { return component_; }
   /// Coefficient for the offset (di, dj) in elements.
-  double at(int di, int dj) const {
-    return values_[static_cast<std::size_t>(di + grid_.nx - 1) +
-                   static_cast<std::size_t>(2 * grid_.nx - 1) *
-                       static_cast<std::size_t>(dj + grid_.ny - 1)];
-  }
-  const std::vector<double>& values() const { return values_; }
+  double at(int di, int dj) const { return origin_[di + stride_ * dj]; }
+  /// The coefficient of offset (0, 0); offset (di, dj) is at origin()[di + stride()·dj], so the
+  /// coefficients of one dj are contiguous in di.
+  const double* origin() const { return origin_; }
+  std::ptrdiff_t stride() const { return stride_; }
 
  private:
   Grid grid_;
   InfluenceComponent component_;
-  std::vector<double> values_;
+  std::shared_ptr<const CoefficientTable> table_;
+  const double* origin_ = nullptr;
+  std::ptrdiff_t stride_ = 0;
 };
 
 }  // namespace wrc
