@@ -113,17 +113,34 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
     std::optional<double> sr;
     if (valid[j]) sr = rail.IntersectLine(m[j], n[j], s_rail[j]);
     const double t_rail = sr ? (rail.PositionAt(*sr) - m[j]).dot(n[j]) : 0.0;
-    // Newton for the wheel starts from the neighbour's intersection: one element along x moves
-    // it by ~x·dx/R, against up to the whole interpenetration from the rail's.
+    // Newton for the wheel starts from the intersections of the row's previous elements,
+    // extrapolated: along x the intersection follows the wheel's circle, so a quadratic through
+    // the last three is within ~dx³·x/R³ (1e-9 mm) and one Newton step suffices, against ~x·dx/R
+    // from the neighbour alone and up to the whole interpenetration from the rail's.
     double t_guess = t_rail;
+    double t_prev[3] = {0.0, 0.0, 0.0};
+    int n_prev = 0;  // consecutive intersections found just before element i (up to 3)
     for (int i = 0; i < grid.nx; ++i) {
       const std::size_t k = grid.index(i, j);
       mu[k] = mu_j;
       if (!sr) continue;
+      if (n_prev == 3) {
+        t_guess = 3.0 * t_prev[0] - 3.0 * t_prev[1] + t_prev[2];
+      } else if (n_prev == 2) {
+        t_guess = 2.0 * t_prev[0] - t_prev[1];
+      } else if (n_prev == 1) {
+        t_guess = t_prev[0];
+      }
       const Eigen::Vector3d m3(ref.x + grid.x(i), m[j](0), m[j](1));
       const auto t_wheel = wheel.IntersectLine(m3, n3, t_guess);
-      if (!t_wheel) continue;
-      t_guess = *t_wheel;
+      if (!t_wheel) {
+        n_prev = 0;
+        continue;
+      }
+      t_prev[2] = t_prev[1];
+      t_prev[1] = t_prev[0];
+      t_prev[0] = *t_wheel;
+      n_prev = std::min(n_prev + 1, 3);
       h[k] = t_rail - *t_wheel;
       if (!ctx.tangential) continue;
       // Material velocities of the rail point P and the wheel point Q of this element, in the
