@@ -1,5 +1,6 @@
 #include "wrc/influence.h"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -109,11 +110,91 @@ namespace {
 
 using TableKey = std::tuple<int, double, double, double, double, double>;
 
+// Fills table.values (half sizes set) from the antiderivative F at the corners of one
+// quadrant. Each coefficient is the corner sum of F over its element (RectangleIntegral);
+// neighbouring elements share corners, and F is odd or even in X and in Y, so F is needed once
+// per corner of one quadrant, (half_x + 1)(half_y + 1) values instead of 4 per coefficient.
+// The coefficients have the opposite parity of F's (even where F is odd), so one quadrant of
+// them is summed and the other three are mirrored.
+void SumCorners(const std::vector<double>& quadrant, bool odd_x, bool odd_y,
+                CoefficientTable& table) {
+  const int hx = table.half_x, hy = table.half_y, cx = hx + 1;
+  const std::size_t width = static_cast<std::size_t>(2 * hx + 1);
+  // F at the corner ((i + ½)·dx, (j + ½)·dy) for i, j >= −1.
+  auto corner = [&](int i, int j) {
+    const double f = quadrant[static_cast<std::size_t>(i < 0 ? 0 : i) +
+                              static_cast<std::size_t>(cx) * (j < 0 ? 0 : j)];
+    const bool negate = (odd_x && i < 0) != (odd_y && j < 0);
+    return negate ? -f : f;
+  };
+  const double sign_x = odd_x ? 1.0 : -1.0, sign_y = odd_y ? 1.0 : -1.0;
+  table.values.resize(width * static_cast<std::size_t>(2 * hy + 1));
+  for (int dj = 0; dj <= hy; ++dj) {
+    double* row = table.values.data() + width * static_cast<std::size_t>(hy + dj) + hx;
+    for (int di = 0; di <= hx; ++di) {
+      row[di] = corner(di, dj) - corner(di - 1, dj) - corner(di, dj - 1) + corner(di - 1, dj - 1);
+    }
+    for (int di = 1; di <= hx; ++di) row[-di] = sign_x * row[di];
+    if (dj > 0) {
+      double* mirror = table.values.data() + width * static_cast<std::size_t>(hy - dj);
+      const double* source = row - hx;
+      for (std::size_t k = 0; k < width; ++k) mirror[k] = sign_y * source[k];
+    }
+  }
+}
+
+// The tables of kNN, kXX, kYY and kXY, made together: in the positive quadrant the two terms
+// of ∫∫1/r are A = X·asinh(Y/X) (which is ∫∫Y²/r³) and B = Y·asinh(X/Y) (∫∫X²/r³), and ∫∫XY/r³
+// is −r, so one square root and two logarithms per corner serve all four components (instead
+// of nine transcendental calls). asinh(Y/X) = ln((Y + r)/X) = log1p((Y + Y²/(r + X))/X), with
+// r − X = Y²/(r + X) written so that nothing cancels.
+std::array<std::shared_ptr<CoefficientTable>, 4> ElasticTables(const CombinedElasticity& m,
+                                                               double dx, double dy, int half_x,
+                                                               int half_y) {
+  const int cx = half_x + 1, cy = half_y + 1;
+  const std::size_t n = static_cast<std::size_t>(cx) * cy;
+  std::vector<double> a_term(n), b_term(n), radius(n);
+  for (int b = 0; b < cy; ++b) {
+    const double Y = (b + 0.5) * dy;
+    for (int a = 0; a < cx; ++a) {
+      const double X = (a + 0.5) * dx;
+      const double r = std::sqrt(X * X + Y * Y);
+      const std::size_t k = static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b;
+      a_term[k] = X * std::log1p((Y + Y * Y / (r + X)) / X);
+      b_term[k] = Y * std::log1p((X + X * X / (r + Y)) / Y);
+      radius[k] = r;
+    }
+  }
+  const double scale = 1.0 / (kPi * m.shear_modulus);
+  const double nu = m.poisson;
+  // Weights of A and B in NN, XX, YY: (1 − ν)(A + B), plus ν·B for XX and ν·A for YY.
+  const double wa[3] = {scale * (1.0 - nu), scale * (1.0 - nu), scale};
+  const double wb[3] = {scale * (1.0 - nu), scale, scale * (1.0 - nu)};
+  std::array<std::shared_ptr<CoefficientTable>, 4> tables;
+  std::vector<double> quadrant(n);
+  for (int t = 0; t < 4; ++t) {
+    tables[t] = std::make_shared<CoefficientTable>();
+    tables[t]->half_x = half_x;
+    tables[t]->half_y = half_y;
+    if (t < 3) {
+      for (std::size_t k = 0; k < n; ++k) quadrant[k] = wa[t] * a_term[k] + wb[t] * b_term[k];
+      SumCorners(quadrant, true, true, *tables[t]);
+    } else {
+      for (std::size_t k = 0; k < n; ++k) quadrant[k] = -scale * nu * radius[k];
+      SumCorners(quadrant, false, false, *tables[t]);  // −r: even in X and Y
+    }
+  }
+  return tables;
+}
+
 std::shared_ptr<const CoefficientTable> Table(InfluenceComponent c, const CombinedElasticity& m,
                                               double dx, double dy, int half_x, int half_y) {
   static std::mutex mutex;
   static std::map<TableKey, std::shared_ptr<const CoefficientTable>> tables;
-  const TableKey key{static_cast<int>(c), m.shear_modulus, m.poisson, m.kappa, dx, dy};
+  auto key_of = [&](InfluenceComponent component) {
+    return TableKey{static_cast<int>(component), m.shear_modulus, m.poisson, m.kappa, dx, dy};
+  };
+  const TableKey key = key_of(c);
   {
     std::lock_guard<std::mutex> lock(mutex);
     auto it = tables.find(key);
@@ -124,71 +205,43 @@ std::shared_ptr<const CoefficientTable> Table(InfluenceComponent c, const Combin
       // Grow by half again so that slowly growing grids do not recompute every time.
       half_x = std::max(half_x, it->second->half_x + it->second->half_x / 2);
       half_y = std::max(half_y, it->second->half_y + it->second->half_y / 2);
+    } else {
+      // A first table covers a few more elements than asked: the steady-rolling operator of
+      // the same patch has one more column, and the next steps of a force iteration slightly
+      // larger boxes.
+      half_x += 2 + half_x / 8;
+      half_y += 2 + half_y / 8;
     }
   }
-  auto table = std::make_shared<CoefficientTable>();
-  table->half_x = half_x;
-  table->half_y = half_y;
-  table->values.resize(static_cast<std::size_t>(2 * half_x + 1) *
-                       static_cast<std::size_t>(2 * half_y + 1));
-  // Each coefficient is the corner sum of an antiderivative F over its element (Eq. of
-  // RectangleIntegral); neighbouring elements share corners, and F is odd or even in X and in Y,
-  // so F is evaluated once per corner of one quadrant, (half_x + 1)(half_y + 1) times instead of
-  // 4 per coefficient: 16x fewer logarithms (they were a tenth of a flange-contact solve).
-  const double scale = 1.0 / (kPi * m.shear_modulus);
-  const double nu = m.poisson;
-  double (*anti_a)(double, double) = AntiInverseR;
-  double (*anti_b)(double, double) = nullptr;
-  double weight_a = scale * (1.0 - nu), weight_b = 0.0;
-  bool odd_x = true, odd_y = true;
-  switch (c) {
-    case InfluenceComponent::kNN:
-      break;
-    case InfluenceComponent::kXX:
-      anti_b = AntiXXOverR3;
-      weight_b = scale * nu;
-      break;
-    case InfluenceComponent::kYY:
-      anti_b = AntiYYOverR3;
-      weight_b = scale * nu;
-      break;
-    case InfluenceComponent::kXY:
-      anti_a = AntiXYOverR3;  // −r: even in X and Y
-      weight_a = scale * nu;
-      odd_x = odd_y = false;
-      break;
-    case InfluenceComponent::kXN:
-    case InfluenceComponent::kNX:
-      anti_a = AntiXOverR2;  // even in X, odd in Y
-      weight_a = (c == InfluenceComponent::kXN ? -scale : scale) * m.kappa;
-      odd_x = false;
-      break;
+  using C = InfluenceComponent;
+  if (c == C::kNN || c == C::kXX || c == C::kYY || c == C::kXY) {
+    const auto made = ElasticTables(m, dx, dy, half_x, half_y);
+    const C order[4] = {C::kNN, C::kXX, C::kYY, C::kXY};
+    std::lock_guard<std::mutex> lock(mutex);
+    for (int t = 0; t < 4; ++t) {
+      auto& slot = tables[key_of(order[t])];
+      if (!slot || slot->half_x < made[t]->half_x || slot->half_y < made[t]->half_y) {
+        slot = made[t];
+      }
+    }
+    return tables[key];
   }
+  // kXN, kNX: F = ±K/(πG)·(½·Y·ln(X² + Y²) + X·atan(Y/X)), even in X and odd in Y.
+  const double weight = (c == C::kXN ? -1.0 : 1.0) * m.kappa / (kPi * m.shear_modulus);
   const int cx = half_x + 1, cy = half_y + 1;
   std::vector<double> quadrant(static_cast<std::size_t>(cx) * cy);
   for (int b = 0; b < cy; ++b) {
     const double Y = (b + 0.5) * dy;
     for (int a = 0; a < cx; ++a) {
       const double X = (a + 0.5) * dx;
-      double f = weight_a * anti_a(X, Y);
-      if (anti_b) f += weight_b * anti_b(X, Y);
-      quadrant[static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b] = f;
+      quadrant[static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b] =
+          weight * AntiXOverR2(X, Y);
     }
   }
-  // F at the corner ((i + ½)·dx, (j + ½)·dy) for any integers i, j.
-  auto corner = [&](int i, int j) {
-    const int a = i >= 0 ? i : -i - 1, b = j >= 0 ? j : -j - 1;
-    const double f = quadrant[static_cast<std::size_t>(a) + static_cast<std::size_t>(cx) * b];
-    const bool negate = (odd_x && i < 0) != (odd_y && j < 0);
-    return negate ? -f : f;
-  };
-  std::size_t k = 0;
-  for (int dj = -half_y; dj <= half_y; ++dj) {
-    for (int di = -half_x; di <= half_x; ++di) {
-      table->values[k++] =
-          corner(di, dj) - corner(di - 1, dj) - corner(di, dj - 1) + corner(di - 1, dj - 1);
-    }
-  }
+  auto table = std::make_shared<CoefficientTable>();
+  table->half_x = half_x;
+  table->half_y = half_y;
+  SumCorners(quadrant, false, true, *table);
   std::lock_guard<std::mutex> lock(mutex);
   auto& slot = tables[key];
   if (!slot || slot->half_x < table->half_x || slot->half_y < table->half_y) slot = table;

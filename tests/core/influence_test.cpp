@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "core/gsl/integration.h"
+#include "wrc/grid.h"
 #include "wrc/material.h"
 
 namespace wrc {
@@ -245,6 +246,38 @@ TEST(Influence, FarFieldApproachesAreaTimesPointKernel) {
     EXPECT_LT(at_100h, 1e-3) << Name(c);  // (h/D)² = 1e-4 times a factor of order one
     EXPECT_GT(at_200h, 0.0) << Name(c);
     EXPECT_NEAR(at_100h / at_200h, 4.0, 0.5) << Name(c);
+  }
+}
+
+TEST(Influence, GridCoefficientsMatchTheClosedForm) {
+  // InfluenceCoefficients builds its tables from antiderivative values shared between corners
+  // and components (log1p forms instead of asinh); every offset must agree with
+  // RectangleInfluence. The corner sums cancel like the closed form's, ε·(1 + D²/(hx·hy))
+  // relative to kNN (as in Symmetries); 16ε also covers the different rounding of log1p.
+  // A second, larger grid of the same cell exercises the table's growth.
+  const CombinedElasticity m = Dissimilar();
+  for (const Rectangle& rect : kRectangles) {
+    for (int n : {5, 12}) {
+      Grid grid;
+      grid.nx = n;
+      grid.ny = n + 3;
+      grid.dx = 2.0 * rect.hx;
+      grid.dy = 2.0 * rect.hy;
+      for (C c : kAllComponents) {
+        const InfluenceCoefficients coeffs(grid, m, c);
+        for (int dj = -(grid.ny - 1); dj <= grid.ny - 1; ++dj) {
+          for (int di = -(grid.nx - 1); di <= grid.nx - 1; ++di) {
+            const double X = di * grid.dx, Y = dj * grid.dy;
+            const double rounding =
+                16.0 * DBL_EPSILON * (1.0 + (X * X + Y * Y) / (rect.hx * rect.hy));
+            const double scale = rounding * RectangleInfluence(C::kNN, m, X, Y, rect.hx, rect.hy);
+            ASSERT_NEAR(coeffs.at(di, dj), RectangleInfluence(c, m, X, Y, rect.hx, rect.hy), scale)
+                << Name(c) << " at offset (" << di << ", " << dj << ") of a " << grid.nx << " x "
+                << grid.ny << " grid";
+          }
+        }
+      }
+    }
   }
 }
 
