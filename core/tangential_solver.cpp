@@ -1,7 +1,9 @@
 #include "wrc/tangential_solver.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 #include <string>
 
@@ -107,6 +109,60 @@ void AddRowSlipTerm(const double* __restrict xx, const double* __restrict yy,
     sy_row[t] += xy[t] * ax + yy[t] * ay;
   }
 }
+
+// Anderson acceleration (Walker & Ni 2011, SIAM J. Numer. Anal. 49) of the sweep seen as a
+// fixed-point map x -> G(x) on the tractions of the contact elements: the next iterate is the
+// combination of the last few G(x) whose residuals G(x) − x cancel best in the least-squares
+// sense. In the adhesion area the sweep is a linear iteration that contracts by only ~0.7 per
+// sweep on the Manchester cases; the combination acts like a Krylov method on it.
+class AndersonMixer {
+ public:
+  explicit AndersonMixer(int depth) : depth_(depth) {}
+
+  // x: iterate the sweep started from; g = G(x). Returns false when there is no history to mix
+  // with (then g itself is the next iterate); otherwise writes the mixed iterate into `next`.
+  bool Mix(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& next) {
+    Eigen::VectorXd f = g - x;
+    const double norm = f.norm();
+    if (has_previous_) {
+      if (norm >= previous_norm_) {
+        // No progress (the slip/adhesion split moved, or the mix overshot): start afresh from
+        // the plain sweep, which converges on its own.
+        df_.clear();
+        dg_.clear();
+      } else {
+        df_.push_back(f - f_previous_);
+        dg_.push_back(g - g_previous_);
+        if (static_cast<int>(df_.size()) > depth_) {
+          df_.pop_front();
+          dg_.pop_front();
+        }
+      }
+    }
+    has_previous_ = true;
+    previous_norm_ = norm;
+    f_previous_ = f;
+    g_previous_ = g;
+    if (df_.empty()) return false;
+    const Eigen::Index m = static_cast<Eigen::Index>(df_.size());
+    Eigen::MatrixXd df(f.size(), m), dg(g.size(), m);
+    for (Eigen::Index c = 0; c < m; ++c) {
+      df.col(c) = df_[static_cast<std::size_t>(c)];
+      dg.col(c) = dg_[static_cast<std::size_t>(c)];
+    }
+    const Eigen::VectorXd gamma = df.colPivHouseholderQr().solve(f);
+    if (!gamma.allFinite()) return false;
+    next = g - dg * gamma;
+    return true;
+  }
+
+ private:
+  int depth_;
+  bool has_previous_ = false;
+  double previous_norm_ = 0.0;
+  Eigen::VectorXd f_previous_, g_previous_;
+  std::deque<Eigen::VectorXd> df_, dg_;
+};
 
 }  // namespace
 
@@ -225,7 +281,31 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     return static_cast<std::size_t>(i - box_i0) + static_cast<std::size_t>(bw) * (j - box_j0);
   };
 
+  // The unknowns of the acceleration: the tractions of the elements in contact (the others
+  // stay zero), and their traction bounds.
+  std::vector<std::size_t> contact;
+  std::vector<double> contact_bound;
+  for (int j = box_j0; j <= box_j1; ++j) {
+    for (int i = row_lo[j - box_j0]; i <= row_hi[j - box_j0]; ++i) {
+      const std::size_t I = g.index(i, j);
+      if (pb.pressure[I] > 0.0) {
+        contact.push_back(ext_index(i, j));
+        contact_bound.push_back(mu_at(I) * pb.pressure[I]);
+      }
+    }
+  }
+  const Eigen::Index n_unknowns = 2 * static_cast<Eigen::Index>(contact.size());
+  Eigen::VectorXd x_start(n_unknowns), x_swept(n_unknowns), x_next(n_unknowns);
+  auto gather = [&](Eigen::VectorXd& v) {
+    for (std::size_t c = 0; c < contact.size(); ++c) {
+      v(2 * c) = ws.px_ext[contact[c]];
+      v(2 * c + 1) = ws.py_ext[contact[c]];
+    }
+  };
+  AndersonMixer mixer(options.acceleration_depth);
+
   for (int it = 1; it <= options.max_iterations; ++it) {
+    if (options.acceleration_depth > 0) gather(x_start);
     ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
                         ws.convolution);
     for (int l = box_j0; l <= box_j1; ++l) {
@@ -312,6 +392,24 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     if (summary.residual < options.tolerance) {
       summary.status = SolverStatus::kConverged;
       break;
+    }
+    if (options.acceleration_depth > 0) {
+      gather(x_swept);
+      if (mixer.Mix(x_start, x_swept, x_next)) {
+        // The mixed tractions, brought back inside the Coulomb bound where the combination left
+        // it; the next sweep starts from them and its own change decides convergence, so the
+        // result is a plain sweep's.
+        for (std::size_t c = 0; c < contact.size(); ++c) {
+          double px = x_next(2 * c), py = x_next(2 * c + 1);
+          const double magnitude = Magnitude(px, py);
+          if (magnitude > contact_bound[c]) {
+            px *= contact_bound[c] / magnitude;
+            py *= contact_bound[c] / magnitude;
+          }
+          ws.px_ext[contact[c]] = px;
+          ws.py_ext[contact[c]] = py;
+        }
+      }
     }
   }
 
