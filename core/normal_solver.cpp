@@ -104,12 +104,27 @@ NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<doub
   double gap_norm_old = 1.0;
   bool conjugate = false;
   double mean_gap = 0.0;
-  // The displacement u = A·p is carried from one iteration to the next when the step changed
-  // the pressure exactly by −τ·d (no element clipped to zero or re-activated): then
-  // u ← s·(u − τ·A·d) with the response A·d already at hand, which saves one of the two FFT
-  // products per iteration once the contact area has settled. Recomputed at least every
-  // kRefreshIterations so that round-off cannot accumulate.
+  // The displacement u = A·p is carried from one iteration to the next: a step changes the
+  // pressure by −τ·d, plus a correction at the few elements it clipped to zero or re-activated,
+  // so u ← s·(u − τ·A·d + A·c) with the response A·d already at hand and A·c summed directly
+  // from the influence coefficients (one column per corrected element). That saves one of the
+  // two FFT products per iteration, also while the contact area still changes. With more than
+  // kMaxDirectColumns corrections the FFT is cheaper (a product costs 25–40 ns per element of
+  // the box, a column ~0.5), and u is recomputed. It is recomputed at least every
+  // kRefreshIterations anyway, so that round-off cannot accumulate.
   constexpr int kRefreshIterations = 16;
+  constexpr std::size_t kMaxDirectColumns = 48;
+  const InfluenceCoefficients columns(op.grid(), op.material(), InfluenceComponent::kNN);
+  const Grid& grid = op.grid();
+  auto add_column = [&](std::size_t k, double amount, double* u) {
+    const int ik = static_cast<int>(k % static_cast<std::size_t>(grid.nx));
+    const int jk = static_cast<int>(k / static_cast<std::size_t>(grid.nx));
+    for (int j = 0; j < grid.ny; ++j) {
+      const double* c = columns.origin() + columns.stride() * (j - jk) - ik;
+      double* row = u + static_cast<std::size_t>(j) * grid.nx;
+      for (int i = 0; i < grid.nx; ++i) row[i] += amount * c[i];
+    }
+  };
   ws.displacement.resize(n);
   bool displacement_valid = false;
   int since_refresh = 0;
@@ -171,16 +186,19 @@ NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<doub
 
     ws.previous = sol.pressure;
     bool overlap = false;
-    bool clipped = false;
+    ws.corrected.clear();
     for (std::size_t i = 0; i < n; ++i) {
       if (ws.previous[i] > 0.0) {
         const double p = ws.previous[i] - tau * ws.direction[i];
-        clipped = clipped || p < 0.0;
+        if (p < 0.0) ws.corrected.push_back(i);
         sol.pressure[i] = std::max(0.0, p);
       } else if (ws.gap[i] < 0.0) {
         // Interpenetration outside the contact: let the element carry load again.
         sol.pressure[i] = -tau * ws.gap[i];
-        overlap = overlap || sol.pressure[i] > 0.0;
+        if (sol.pressure[i] > 0.0) {
+          overlap = true;
+          ws.corrected.push_back(i);
+        }
         if (sol.pressure[i] < 0.0) sol.pressure[i] = 0.0;
       }
     }
@@ -194,10 +212,16 @@ NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<doub
       for (double& p : sol.pressure) p *= scale;
       sum = load.value / area;
     }
-    displacement_valid = !overlap && !clipped;
+    displacement_valid = ws.corrected.size() <= kMaxDirectColumns;
     if (displacement_valid) {
-      for (std::size_t i = 0; i < n; ++i) {
-        ws.displacement[i] = scale * (ws.displacement[i] - tau * ws.response[i]);
+      for (std::size_t i = 0; i < n; ++i) ws.displacement[i] -= tau * ws.response[i];
+      // The correction at element k: the pressure set minus the unclipped −τ·d step.
+      for (std::size_t k : ws.corrected) {
+        const double stepped = ws.previous[k] - tau * ws.direction[k];
+        add_column(k, sol.pressure[k] / scale - stepped, ws.displacement.data());
+      }
+      if (scale != 1.0) {
+        for (std::size_t i = 0; i < n; ++i) ws.displacement[i] *= scale;
       }
     }
     double change = 0.0;

@@ -54,6 +54,7 @@ struct NormalSummary {
 struct NormalWorkspace {
   ConvolutionWorkspace convolution;
   std::vector<double> gap, direction, response, previous, displacement;
+  std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
 };
 
 /// Solves the normal problem for undeformed distance `h` (excluding the approach: the gap is
