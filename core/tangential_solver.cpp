@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <stdexcept>
 #include <string>
 
@@ -117,51 +116,75 @@ void AddRowSlipTerm(const double* __restrict xx, const double* __restrict yy,
 // sweep on the Manchester cases; the combination acts like a Krylov method on it.
 class AndersonMixer {
  public:
-  explicit AndersonMixer(int depth) : depth_(depth) {}
+  AndersonMixer(int depth, Eigen::Index size)
+      : depth_(depth),
+        df_(size, std::max(depth, 1)),
+        dg_(size, std::max(depth, 1)),
+        gram_(std::max(depth, 1), std::max(depth, 1)),
+        f_(size),
+        f_previous_(size),
+        g_previous_(size) {}
 
   // x: iterate the sweep started from; g = G(x). Returns false when there is no history to mix
   // with (then g itself is the next iterate); otherwise writes the mixed iterate into `next`.
   bool Mix(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& next) {
-    Eigen::VectorXd f = g - x;
-    const double norm = f.norm();
+    f_ = g - x;
+    const double norm = f_.norm();
     if (has_previous_) {
       if (norm >= previous_norm_) {
         // No progress (the slip/adhesion split moved, or the mix overshot): start afresh from
         // the plain sweep, which converges on its own.
-        df_.clear();
-        dg_.clear();
+        count_ = 0;
       } else {
-        df_.push_back(f - f_previous_);
-        dg_.push_back(g - g_previous_);
-        if (static_cast<int>(df_.size()) > depth_) {
-          df_.pop_front();
-          dg_.pop_front();
+        // The differences go into a ring of depth_ columns; the Gram matrix of the ΔF columns
+        // is updated by one row, so a sweep costs O(depth·size), not a QR's O(depth²·size).
+        const Eigen::Index slot = (first_ + count_) % depth_;
+        if (count_ < depth_) {
+          ++count_;
+        } else {
+          first_ = (first_ + 1) % depth_;
+        }
+        df_.col(slot) = f_ - f_previous_;
+        dg_.col(slot) = g - g_previous_;
+        for (Eigen::Index c = 0; c < depth_; ++c) {
+          if (InUse(c)) gram_(slot, c) = gram_(c, slot) = df_.col(slot).dot(df_.col(c));
         }
       }
     }
     has_previous_ = true;
     previous_norm_ = norm;
-    f_previous_ = f;
+    f_previous_ = f_;
     g_previous_ = g;
-    if (df_.empty()) return false;
-    const Eigen::Index m = static_cast<Eigen::Index>(df_.size());
-    Eigen::MatrixXd df(f.size(), m), dg(g.size(), m);
-    for (Eigen::Index c = 0; c < m; ++c) {
-      df.col(c) = df_[static_cast<std::size_t>(c)];
-      dg.col(c) = dg_[static_cast<std::size_t>(c)];
+    if (count_ == 0) return false;
+    // γ = argmin |f − ΔF·γ| from the normal equations, regularised at 1e-12 of the largest
+    // diagonal: far below the columns' own scale, enough to keep nearly parallel columns from
+    // producing huge coefficients.
+    Eigen::MatrixXd a(count_, count_);
+    Eigen::VectorXd b(count_);
+    double largest = 0.0;
+    for (Eigen::Index r = 0; r < count_; ++r) {
+      const Eigen::Index cr = (first_ + r) % depth_;
+      b(r) = df_.col(cr).dot(f_);
+      for (Eigen::Index c = 0; c < count_; ++c) a(r, c) = gram_(cr, (first_ + c) % depth_);
+      largest = std::max(largest, a(r, r));
     }
-    const Eigen::VectorXd gamma = df.colPivHouseholderQr().solve(f);
+    a.diagonal().array() += 1e-12 * largest;
+    const Eigen::VectorXd gamma = a.ldlt().solve(b);
     if (!gamma.allFinite()) return false;
-    next = g - dg * gamma;
+    next = g;
+    for (Eigen::Index r = 0; r < count_; ++r) next -= gamma(r) * dg_.col((first_ + r) % depth_);
     return true;
   }
 
  private:
-  int depth_;
+  bool InUse(Eigen::Index slot) const { return ((slot - first_ + depth_) % depth_) < count_; }
+
+  Eigen::Index depth_;
+  Eigen::Index first_ = 0, count_ = 0;  // ring of the last count_ differences from first_
+  Eigen::MatrixXd df_, dg_, gram_;
+  Eigen::VectorXd f_, f_previous_, g_previous_;
   bool has_previous_ = false;
   double previous_norm_ = 0.0;
-  Eigen::VectorXd f_previous_, g_previous_;
-  std::deque<Eigen::VectorXd> df_, dg_;
 };
 
 }  // namespace
@@ -302,7 +325,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       v(2 * c + 1) = ws.py_ext[contact[c]];
     }
   };
-  AndersonMixer mixer(options.acceleration_depth);
+  AndersonMixer mixer(options.acceleration_depth, n_unknowns);
 
   for (int it = 1; it <= options.max_iterations; ++it) {
     if (options.acceleration_depth > 0) gather(x_start);
