@@ -57,8 +57,7 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
   grid_.Validate();
   // Linear convolution of n values with offsets −(n−1)…(n−1) is exact as a circular one of
   // length >= 2n − 1; rounded up to a size FFTW transforms fast.
-  const int n1 = fftw::PaddedPlan2d::FastSize(2 * grid_.nx - 1);
-  const int n0 = fftw::PaddedPlan2d::FastSize(2 * grid_.ny - 1);
+  const auto [n0, n1] = fftw::PaddedPlan2d::FastSizes(2 * grid_.ny - 1, 2 * grid_.nx - 1);
   plan_ = fftw::PaddedPlan2d::Shared(n0, n1);
 
   fftw::RealBuffer kernel(static_cast<std::size_t>(n0) * n1);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <random>
@@ -83,11 +84,13 @@ TEST_P(PaddedPlanTest, BackwardOfForwardGivesTheFieldTimesTheSize) {
   for (std::size_t k = 0; k < in.size(); ++k) EXPECT_NEAR(out[k] / n, in[k], 1e-13) << k;
 }
 
-INSTANTIATE_TEST_SUITE_P(Shapes, PaddedPlanTest,
-                         ::testing::Values(Shape{2, 2, 1, 1}, Shape{6, 10, 3, 5},
-                                           Shape{8, 12, 4, 6}, Shape{10, 6, 5, 2},
-                                           Shape{12, 16, 7, 8}, Shape{16, 20, 16, 20},
-                                           Shape{20, 12, 9, 6}));
+INSTANTIATE_TEST_SUITE_P(
+    Shapes, PaddedPlanTest,
+    ::testing::Values(Shape{2, 2, 1, 1}, Shape{6, 10, 3, 5}, Shape{8, 12, 4, 6}, Shape{10, 6, 5, 2},
+                      Shape{12, 16, 7, 8}, Shape{16, 20, 16, 20}, Shape{20, 12, 9, 6},
+                      // Lengths with factors 7, 11 and 13, which
+                      // FastSizes picks (e.g. 70, 98, 154, 176).
+                      Shape{14, 22, 7, 11}, Shape{26, 28, 13, 14}, Shape{22, 14, 11, 7}));
 
 TEST(PaddedPlan, RejectsOddSizes) {
   EXPECT_THROW(PaddedPlan2d(5, 8), std::invalid_argument);
@@ -99,6 +102,24 @@ TEST(PaddedPlan, FastSizesAreEvenProductsOfTwoThreeOrFive) {
   EXPECT_EQ(PaddedPlan2d::FastSize(145), 160);
   EXPECT_EQ(PaddedPlan2d::FastSize(167), 192);
   EXPECT_EQ(PaddedPlan2d::FastSize(257), 320);
+}
+
+TEST(PaddedPlan, FastSizesCoverTheRequestWithEvenLengths) {
+  // Every request from 1 to 600 values per direction (a linear convolution of up to 300
+  // elements) gets even lengths of at least the request, from the table up to 1024 and
+  // FastSize beyond; each at most twice the request (or FastSize's).
+  for (int m0 = 1; m0 <= 600; m0 += 7) {
+    for (int m1 = 1; m1 <= 600; m1 += 11) {
+      const auto [n0, n1] = PaddedPlan2d::FastSizes(m0, m1);
+      ASSERT_TRUE(n0 >= m0 && n1 >= m1) << m0 << " " << m1;
+      ASSERT_TRUE(n0 % 2 == 0 && n1 % 2 == 0) << m0 << " " << m1;
+      ASSERT_LE(n0, std::max(2 * m0, PaddedPlan2d::FastSize(m0))) << m0;
+      ASSERT_LE(n1, std::max(2 * m1, PaddedPlan2d::FastSize(m1))) << m1;
+    }
+  }
+  const auto [big0, big1] = PaddedPlan2d::FastSizes(1500, 2100);
+  EXPECT_EQ(big0, PaddedPlan2d::FastSize(1500));
+  EXPECT_EQ(big1, PaddedPlan2d::FastSize(2100));
 }
 
 }  // namespace
