@@ -387,6 +387,13 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
         if (pass > 0 && z != z_last) {
           const double secant = (f - f_last) / (z - z_last);
           if (secant > 0.0) stiffness = secant;
+        } else if (pass == 0 && z == z1 && f1 > 0.0 && f > 0.0) {
+          // The tangential part of FZ(TR), fs·sin δ, follows the normal load (in full slip
+          // fs = μ·fn exactly), so dF/dz scales like F itself: the normal stiffness times
+          // F_full/F_normal at this z. At flange contact, where that part is a few % of FZ,
+          // this saves the pass that the secant needed to learn it; on the tread it changes
+          // the stiffness by 1e-4 or less.
+          stiffness *= f / f1;
         }
         z_last = z;
         f_last = f;
