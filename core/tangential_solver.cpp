@@ -327,18 +327,45 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   };
   AndersonMixer mixer(options.acceleration_depth, n_unknowns);
 
+  // Two ways to keep the slips of the contact current between sweeps:
+  //  - fast contraction (full slip: ~0.1 per sweep): each update also corrects the rows already
+  //    swept, which doubles the direct work of a sweep but leaves every slip current, so the
+  //    next sweep needs no FFT product; a fresh product every kRefreshSweeps sweeps keeps
+  //    round-off from drifting. That pays while the extra direct work, ~2 instructions per
+  //    pair of contact elements, stays below the product, ~150 per transform point: with
+  //    kDirectMargin for the cache misses of far rows, n_contact² < 30·points (a 750-element
+  //    heavy-haul patch, not a 2000-element one);
+  //  - slow contraction (partial slip: 0.6–0.7): Anderson mixing, whose combined tractions
+  //    need a fresh product anyway, and only the rows still to come are corrected.
+  // Mixing starts once a sweep contracts the change by less than kSlowContraction.
+  constexpr int kRefreshSweeps = 8;
+  constexpr double kSlowContraction = 0.3;
+  constexpr double kDirectMargin = 30.0;
+  const double n_contact = static_cast<double>(contact.size());
+  const bool direct_pays =
+      options.direct_refresh &&
+      n_contact * n_contact < kDirectMargin * static_cast<double>(ext.transform_points());
+  bool slips_current = false;
+  bool mixing = false;
+  int since_refresh = 0;
+  double previous_residual = 0.0;
   for (int it = 1; it <= options.max_iterations; ++it) {
     if (options.acceleration_depth > 0) gather(x_start);
-    ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
-                        ws.convolution);
-    for (int l = box_j0; l <= box_j1; ++l) {
-      for (int k = box_i0; k < box_i1; ++k) {
-        const std::size_t E = ext_index(k, l);
-        const std::size_t I = g.index(k, l);
-        ws.sx_box[box_index(k, l)] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
-        ws.sy_box[box_index(k, l)] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+    if (!slips_current || since_refresh >= kRefreshSweeps) {
+      ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                          ws.convolution);
+      for (int l = box_j0; l <= box_j1; ++l) {
+        for (int k = box_i0; k < box_i1; ++k) {
+          const std::size_t E = ext_index(k, l);
+          const std::size_t I = g.index(k, l);
+          ws.sx_box[box_index(k, l)] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
+          ws.sy_box[box_index(k, l)] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+        }
       }
+      since_refresh = 0;
     }
+    ++since_refresh;
+    const bool update_all = !mixing && direct_pays;
     double max_change = 0.0;
     for (int j = box_j0; j <= box_j1; ++j) {
       // Elements b..hi of the row: its contact range and a few exterior elements downstream of
@@ -383,7 +410,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
         row_change_x += dpx;
         row_change_y += dpy;
         const double ax = dpx * inv_dq, ay = dpy * inv_dq;
-        for (int l = j; l <= box_j1; ++l) {
+        for (int l = update_all ? box_j0 : j; l <= box_j1; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
           if (hi < lo) continue;
           const int dj = l - j;
@@ -401,9 +428,9 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       }
       if (row_change_x != 0.0 || row_change_y != 0.0) {
         const double ax = -row_change_x * inv_dq, ay = -row_change_y * inv_dq;
-        for (int l = j + 1; l <= box_j1; ++l) {
+        for (int l = update_all ? box_j0 : j + 1; l <= box_j1; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
-          if (hi < lo) continue;
+          if (hi < lo || l == j) continue;
           const int d1 = lo - b + 1, dj = l - j;
           AddRowSlipTerm(xx_at(d1, dj), yy_at(d1, dj), xy_at(d1, dj), ax, ay, hi - lo + 1,
                          ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
@@ -416,9 +443,17 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       summary.status = SolverStatus::kConverged;
       break;
     }
+    slips_current = update_all;
+    if (options.acceleration_depth > 0 && !mixing && it > 1 &&
+        summary.residual > kSlowContraction * previous_residual) {
+      mixing = true;
+    }
+    previous_residual = summary.residual;
     if (options.acceleration_depth > 0) {
+      // The history is kept from the first sweep, so that mixing, once on, combines at once.
       gather(x_swept);
-      if (mixer.Mix(x_start, x_swept, x_next)) {
+      if (mixer.Mix(x_start, x_swept, x_next) && mixing) {
+        slips_current = false;
         // The mixed tractions, brought back inside the Coulomb bound where the combination left
         // it; the next sweep starts from them and its own change decides convergence, so the
         // result is a plain sweep's.

@@ -83,6 +83,10 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
 
 FftInfluenceOperator::~FftInfluenceOperator() = default;
 
+std::size_t FftInfluenceOperator::transform_points() const {
+  return static_cast<std::size_t>(plan_->n0()) * static_cast<std::size_t>(plan_->n1());
+}
+
 ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   ConvolutionWorkspace ws;
   ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>();

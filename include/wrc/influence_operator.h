@@ -48,6 +48,8 @@ class FftInfluenceOperator {
   const Grid& grid() const { return grid_; }
   const CombinedElasticity& material() const { return material_; }
   bool has(InfluenceComponent c) const { return spectra_[Index(c)].size() > 0; }
+  /// Points of the padded transform (n0·n1): the cost of a product scales with it.
+  std::size_t transform_points() const;
 
   /// A workspace sized for this operator.
   ConvolutionWorkspace MakeWorkspace() const;

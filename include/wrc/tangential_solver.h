@@ -51,6 +51,10 @@ struct TangentialOptions {
   /// the Manchester curved cases (partial slip): 8 takes the final solves from 17–22 sweeps to
   /// 13–16; depths beyond 8 gain nothing, 1–3 about half as much; full slip is unchanged.
   int acceleration_depth = 8;
+  /// Let fast-converging sweeps keep every slip current by direct updates instead of an FFT
+  /// product per sweep, where that is cheaper (small contact in a large box; see
+  /// SolveTangential). Same iterates up to round-off; off for comparisons in tests.
+  bool direct_refresh = true;
   /// Start from the tractions already in TangentialSolution::px/py when their size fits the
   /// grid (set to zero outside the contact), e.g. the previous solve of a force iteration;
   /// otherwise from zero tractions.

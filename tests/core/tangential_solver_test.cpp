@@ -152,6 +152,40 @@ TEST(TangentialSolver, AccelerationKeepsTheSolutionAndSavesSweeps) {
   EXPECT_NEAR(accelerated.mz, plain.mz, 1e-6 * mu * fn * 4.0);  // lever arm up to the 4 mm grid
 }
 
+// Sweeps that keep every slip current by direct updates (no FFT product per sweep; chosen when
+// the contact is small against its box, here ~200 elements in a 32 x 32 grid) give the
+// solution of sweeps that refresh the slips by FFT, to the solver's tolerance (see
+// AccelerationKeepsTheSolutionAndSavesSweeps for the bounds), in full and in partial slip.
+TEST(TangentialSolver, DirectSlipUpdatesKeepTheSolution) {
+  const Grid g = Grid::Covering(-4.0, 4.0, -4.0, 4.0, 0.25, 0.25);
+  const double fn = 3000.0, mu = 0.3;
+  const Strip strip = SolveNormalOn(g, 0.001087, 0.001087, fn);
+  const SteadyRollingOperator op(g, Steel());
+  double pmax = 0.0;
+  for (double p : strip.pressure) pmax = std::max(pmax, p);
+  for (const double creepage : {0.05, 0.0004}) {  // full slip, partial slip
+    TangentialProblem pb;
+    pb.pressure = strip.pressure;
+    pb.mu = {mu};
+    pb.wx.assign(g.size(), creepage);
+    pb.wy.assign(g.size(), -0.5 * creepage);
+    TangentialSolution by_fft, direct;
+    TangentialWorkspace ws;
+    TangentialOptions options;
+    options.acceleration_depth = 0;  // plain sweeps: the direct mode is used throughout
+    options.direct_refresh = false;
+    ASSERT_EQ(SolveTangential(op, pb, options, ws, by_fft).status, SolverStatus::kConverged);
+    options.direct_refresh = true;
+    ASSERT_EQ(SolveTangential(op, pb, options, ws, direct).status, SolverStatus::kConverged);
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      ASSERT_NEAR(direct.px[k], by_fft.px[k], 1e-5 * mu * pmax) << creepage << " " << k;
+      ASSERT_NEAR(direct.py[k], by_fft.py[k], 1e-5 * mu * pmax) << creepage << " " << k;
+    }
+    EXPECT_NEAR(direct.fx, by_fft.fx, 1e-6 * mu * fn) << creepage;
+    EXPECT_NEAR(direct.fy, by_fft.fy, 1e-6 * mu * fn) << creepage;
+  }
+}
+
 TEST(TangentialSolver, RejectsBadInput) {
   const Grid g{4, 4, 0.5, 0.5, 0.0, 0.0};
   const SteadyRollingOperator op(g, Steel());
