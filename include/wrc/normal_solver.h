@@ -55,6 +55,7 @@ struct NormalWorkspace {
   ConvolutionWorkspace convolution;
   std::vector<double> gap, direction, response, previous, displacement;
   std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
+  std::vector<double> correction;      ///< their pressure minus the unclipped step
 };
 
 /// Solves the normal problem for undeformed distance `h` (excluding the approach: the gap is
