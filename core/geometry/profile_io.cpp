@@ -72,8 +72,9 @@ std::string Quote(std::string_view text) {
 }
 
 /// Splits at any of `separators`, dropping empty pieces (runs of spaces).
-std::vector<std::string_view> Split(std::string_view text, std::string_view separators) {
-  std::vector<std::string_view> tokens;
+void SplitInto(std::string_view text, std::string_view separators,
+               std::vector<std::string_view>& tokens) {
+  tokens.clear();
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t end = text.find_first_of(separators, start);
@@ -82,6 +83,11 @@ std::vector<std::string_view> Split(std::string_view text, std::string_view sepa
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
+}
+
+std::vector<std::string_view> Split(std::string_view text, std::string_view separators) {
+  std::vector<std::string_view> tokens;
+  SplitInto(text, separators, tokens);
   return tokens;
 }
 
@@ -159,11 +165,17 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
   int point_block_line = 0;
   bool seen_point_block = false;
   bool warned_extra_columns = false;
+  // Reused across the lines: a profile has hundreds of point lines, and allocating per line was
+  // most of reading one.
+  std::vector<std::string_view> tokens;
+  std::vector<double> values;
   for (std::size_t index = 0; index < lines.size(); ++index) {
     const int line_number = static_cast<int>(index) + 1;
     const std::string_view text = Trim(StripSimpackComment(lines[index]));
     if (text.empty()) continue;
-    const std::string keyword = Lower(text);
+    // Block keywords start with a letter; point lines with a digit, sign or point.
+    const bool may_be_keyword = std::isalpha(static_cast<unsigned char>(text.front())) != 0;
+    const std::string keyword = may_be_keyword ? Lower(text) : std::string();
     if (keyword == "header.begin") {
       block = Block::kHeader;
     } else if (keyword == "spline.begin") {
@@ -184,8 +196,8 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
       }
       block = Block::kNone;
     } else if (block == Block::kPoints) {
-      const std::vector<std::string_view> tokens = Split(text, " \t\f\v,");
-      std::vector<double> values;
+      SplitInto(text, " \t\f\v,", tokens);
+      values.clear();
       for (const std::string_view token : tokens) {
         const std::optional<double> value = ParseNumber(token);
         if (!value) {
