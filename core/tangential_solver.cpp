@@ -96,16 +96,50 @@ void AddRowSlipChange(const double* __restrict xx0, const double* __restrict xx1
   }
 }
 
-// One kernel's slip change along a row: s += [[xx, xy], [xy, yy]]·(ax, ay).
+// The slip change along one row from all updates of another row:
+// s[t] += Σ_u [[xx, xy], [xy, yy]](offset_u + t)·(ax_u, ay_u), with xx, yy, xy pointing at the
+// coefficients of the rows' offset dj. One call per pair of rows instead of one per update and
+// row: heavy-haul rows are ~15 elements long, and the calls cost as much as the arithmetic.
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-void AddRowSlipTerm(const double* __restrict xx, const double* __restrict yy,
-                    const double* __restrict xy, double ax, double ay, int count,
-                    double* __restrict sx_row, double* __restrict sy_row) {
-  for (int t = 0; t < count; ++t) {
-    sx_row[t] += xx[t] * ax + xy[t] * ay;
-    sy_row[t] += xy[t] * ax + yy[t] * ay;
+void AddRowSlipTerms(const double* __restrict xx, const double* __restrict yy,
+                     const double* __restrict xy, const int* __restrict offsets,
+                     const double* __restrict ax, const double* __restrict ay, int updates,
+                     int count, double* __restrict sx_row, double* __restrict sy_row) {
+  // Blocks of four slips stay in registers while all updates are added (one vector each with
+  // AVX2), instead of a load and a store of the row per update.
+  int t = 0;
+  for (; t + 4 <= count; t += 4) {
+    double sx[4], sy[4];
+    for (int q = 0; q < 4; ++q) {
+      sx[q] = sx_row[t + q];
+      sy[q] = sy_row[t + q];
+    }
+    for (int u = 0; u < updates; ++u) {
+      const double* cxx = xx + offsets[u] + t;
+      const double* cyy = yy + offsets[u] + t;
+      const double* cxy = xy + offsets[u] + t;
+      const double a = ax[u], b = ay[u];
+      for (int q = 0; q < 4; ++q) {
+        sx[q] += cxx[q] * a + cxy[q] * b;
+        sy[q] += cxy[q] * a + cyy[q] * b;
+      }
+    }
+    for (int q = 0; q < 4; ++q) {
+      sx_row[t + q] = sx[q];
+      sy_row[t + q] = sy[q];
+    }
+  }
+  for (; t < count; ++t) {
+    double sx = sx_row[t], sy = sy_row[t];
+    for (int u = 0; u < updates; ++u) {
+      const int o = offsets[u] + t;
+      sx += xx[o] * ax[u] + xy[o] * ay[u];
+      sy += xy[o] * ax[u] + yy[o] * ay[u];
+    }
+    sx_row[t] = sx;
+    sy_row[t] = sy;
   }
 }
 
@@ -375,6 +409,9 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       // update of the slip field, so only kSinkElements of them are used.
       const int b = std::max(box_i0, row_lo[j - box_j0] - kSinkElements);
       double row_change_x = 0.0, row_change_y = 0.0;
+      ws.offsets.clear();
+      ws.amounts_x.clear();
+      ws.amounts_y.clear();
       for (int i = row_hi[j - box_j0]; i >= b; --i) {
         const std::size_t I = g.index(i, j);
         const std::size_t E = ext_index(i, j);
@@ -410,30 +447,34 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
         row_change_x += dpx;
         row_change_y += dpy;
         const double ax = dpx * inv_dq, ay = dpy * inv_dq;
-        for (int l = update_all ? box_j0 : j; l <= box_j1; ++l) {
-          const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
-          if (hi < lo) continue;
-          const int dj = l - j;
-          double* sx_row = ws.sx_box.data() + box_index(lo, l);
-          double* sy_row = ws.sy_box.data() + box_index(lo, l);
-          if (l == j) {
-            const int d0 = lo - i, d1 = lo - b + 1;
-            AddRowSlipChange(xx_at(d0, dj), xx_at(d1, dj), yy_at(d0, dj), yy_at(d1, dj),
-                             xy_at(d0, dj), xy_at(d1, dj), ax, ay, hi - lo + 1, sx_row, sy_row);
-          } else {
-            AddRowSlipTerm(xx_at(lo - i, dj), yy_at(lo - i, dj), xy_at(lo - i, dj), ax, ay,
-                           hi - lo + 1, sx_row, sy_row);
-          }
+        {
+          const int lo = row_lo[j - box_j0], hi = row_hi[j - box_j0];
+          const int d0 = lo - i, d1 = lo - b + 1;
+          AddRowSlipChange(xx_at(d0, 0), xx_at(d1, 0), yy_at(d0, 0), yy_at(d1, 0), xy_at(d0, 0),
+                           xy_at(d1, 0), ax, ay, hi - lo + 1, ws.sx_box.data() + box_index(lo, j),
+                           ws.sy_box.data() + box_index(lo, j));
         }
+        // Other rows take the update when the row is done (below): offset i of the A(k − i)
+        // term, relative to the first element of the target row's contact range.
+        ws.offsets.push_back(-i);
+        ws.amounts_x.push_back(ax);
+        ws.amounts_y.push_back(ay);
       }
       if (row_change_x != 0.0 || row_change_y != 0.0) {
-        const double ax = -row_change_x * inv_dq, ay = -row_change_y * inv_dq;
+        // The A(k − b + 1) term of all of the row's updates at once.
+        ws.offsets.push_back(-(b - 1));
+        ws.amounts_x.push_back(-row_change_x * inv_dq);
+        ws.amounts_y.push_back(-row_change_y * inv_dq);
+      }
+      const int updates = static_cast<int>(ws.offsets.size());
+      if (updates > 0) {
         for (int l = update_all ? box_j0 : j + 1; l <= box_j1; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
           if (hi < lo || l == j) continue;
-          const int d1 = lo - b + 1, dj = l - j;
-          AddRowSlipTerm(xx_at(d1, dj), yy_at(d1, dj), xy_at(d1, dj), ax, ay, hi - lo + 1,
-                         ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
+          const int dj = l - j;
+          AddRowSlipTerms(xx_at(lo, dj), yy_at(lo, dj), xy_at(lo, dj), ws.offsets.data(),
+                          ws.amounts_x.data(), ws.amounts_y.data(), updates, hi - lo + 1,
+                          ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
         }
       }
     }

@@ -89,6 +89,8 @@ struct TangentialSummary {
 struct TangentialWorkspace {
   ConvolutionWorkspace convolution;
   std::vector<double> px_ext, py_ext, ux_ext, uy_ext, sx_box, sy_box;
+  std::vector<int> offsets;                  ///< one row's updates: offsets of their kernels
+  std::vector<double> amounts_x, amounts_y;  ///< and their traction changes / δq
 };
 
 /// Solves the steady-rolling problem for identical (quasi-identical) materials; the normal
