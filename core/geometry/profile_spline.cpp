@@ -238,7 +238,7 @@ std::vector<double> ArcLengths(const gsl::Spline& y, const gsl::Spline& z, doubl
     double sum = 0.0;
     for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
       const double at = mid + half * rule.nodes[k];
-      sum += rule.weights[k] * std::hypot(y.Derivative(at), z.Derivative(at));
+      sum += rule.weights[k] * std::hypot(y.DerivativeOn(i, at), z.DerivativeOn(i, at));
     }
     arc[i + 1] = arc[i] + half * sum;
   }
@@ -297,10 +297,11 @@ std::vector<double> PartKnots(const std::vector<double>& y, const std::vector<do
 YPiece MakeYPiece(const Part& part, const std::vector<double>& s, const std::vector<double>& y,
                   const std::vector<double>& z, std::size_t i) {
   YPiece piece{};
-  piece.y = HermiteCubic(y[i], y[i + 1], part.y.Derivative(s[i]), part.y.Derivative(s[i + 1]),
-                         s[i + 1] - s[i]);
-  piece.z = HermiteCubic(z[i], z[i + 1], part.z.Derivative(s[i]), part.z.Derivative(s[i + 1]),
-                         s[i + 1] - s[i]);
+  const std::size_t k = i - part.first;  // the interval within the part's splines
+  piece.y = HermiteCubic(y[i], y[i + 1], part.y.DerivativeOn(k, s[i]),
+                         part.y.DerivativeOn(k, s[i + 1]), s[i + 1] - s[i]);
+  piece.z = HermiteCubic(z[i], z[i + 1], part.z.DerivativeOn(k, s[i]),
+                         part.z.DerivativeOn(k, s[i + 1]), s[i + 1] - s[i]);
   piece.y_min = std::min(y[i], y[i + 1]);
   piece.y_max = std::max(y[i], y[i + 1]);
   piece.bound_count = 0;

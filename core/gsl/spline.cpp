@@ -282,6 +282,17 @@ double Spline::Derivative(double x) const {
   return result;
 }
 
+double Spline::DerivativeOn(std::size_t interval, double x) const {
+  // An accelerator that already points at the interval: GSL's lookup then checks it and takes
+  // it, instead of a binary search (the derivative itself is GSL's, for every spline type).
+  gsl_interp_accel accel{};
+  accel.cache = std::min(interval, x_.size() - 2);
+  double result = 0.0;
+  CheckStatus(gsl_spline_eval_deriv_e(state_->spline.get(), x, &accel, &result),
+              "gsl_spline_eval_deriv_e");
+  return result;
+}
+
 double Spline::SecondDerivative(double x) const {
   double result = 0.0;
   CheckStatus(gsl_spline_eval_deriv2_e(state_->spline.get(), x, nullptr, &result),

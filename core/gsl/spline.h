@@ -47,6 +47,9 @@ class Spline {
   double Value(double x) const;
   double Derivative(double x) const;
   double SecondDerivative(double x) const;
+  /// f'(x) for x in knot interval [knots()[interval], knots()[interval + 1]], without the
+  /// search for the interval (x is not checked against it): for loops that walk the intervals.
+  double DerivativeOn(std::size_t interval, double x) const;
   /// ∫_a^b f(x) dx with a, b in [x_min(), x_max()].
   double Integral(double a, double b) const;
 

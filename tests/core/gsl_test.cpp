@@ -13,6 +13,7 @@
 #include "core/gsl/error.h"
 #include "core/gsl/integration.h"
 #include "core/gsl/roots.h"
+#include "core/gsl/spline.h"
 
 namespace wrc::gsl {
 namespace {
@@ -219,4 +220,29 @@ TEST(GslElliptic, CarlsonRdValuesAndIdentity) {
 }
 
 }  // namespace
+
+TEST(GslSpline, DerivativeOnAnIntervalMatchesTheSearchedOne) {
+  // DerivativeOn skips the search for the knot interval; on every interval, at its ends and
+  // inside, it must give Derivative's value (the same arithmetic, so to round-off) for every
+  // spline type.
+  const std::vector<double> x{0.0, 0.3, 1.1, 1.5, 2.9, 3.0, 4.4};
+  const std::vector<double> f{1.0, 0.2, -0.7, 0.4, 2.5, 2.4, -1.0};
+  std::vector<wrc::gsl::Spline> splines;
+  for (auto type : {wrc::gsl::SplineType::kLinear, wrc::gsl::SplineType::kNaturalCubic,
+                    wrc::gsl::SplineType::kAkima, wrc::gsl::SplineType::kSteffen}) {
+    splines.emplace_back(x, f, type);
+  }
+  splines.emplace_back(x, f, wrc::gsl::CubicEnd::kNotAKnot, wrc::gsl::CubicEnd::kNatural);
+  for (const wrc::gsl::Spline& spline : splines) {
+    for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+      for (double t : {0.0, 0.25, 0.5, 0.999}) {
+        const double at = x[i] + t * (x[i + 1] - x[i]);
+        EXPECT_NEAR(spline.DerivativeOn(i, at), spline.Derivative(at),
+                    1e-13 * (1.0 + std::fabs(spline.Derivative(at))))
+            << "type " << static_cast<int>(spline.type()) << " interval " << i << " t " << t;
+      }
+    }
+  }
+}
+
 }  // namespace wrc::gsl
