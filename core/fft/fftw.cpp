@@ -67,6 +67,10 @@ PaddedPlan2d::~PaddedPlan2d() {
   }
 }
 
+// The row loops around the FFTW calls built for AVX2 as well as the baseline ISA.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double>* spectrum,
                            std::complex<double>* rows) const {
   using Complex = std::complex<double>;
@@ -99,6 +103,10 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
                    reinterpret_cast<fftw_complex*>(spectrum));
 }
 
+// The row loops around the FFTW calls built for AVX2 as well as the baseline ISA.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void PaddedPlan2d::Backward(std::complex<double>* spectrum, int ny, int nx, double* out,
                             std::complex<double>* rows) const {
   using Complex = std::complex<double>;
