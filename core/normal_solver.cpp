@@ -53,6 +53,11 @@ void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double
 
 }  // namespace
 
+// The grid passes built for AVX2 as well as the baseline ISA, chosen at load time (no FMA in
+// either, so both give the same results).
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
                           const NormalLoad& load, const NormalOptions& options, NormalWorkspace& ws,
                           NormalSolution& sol) {
