@@ -111,7 +111,10 @@ double HertzGuess(const Problem& pb, double fz, double first_contact) {
   const double a1 = 0.5 * cos_a * at.curvature, b1 = 0.5 * cos_a * gap_curvature;
   if (!(cos_a > 0.1 && a1 > 0.0 && b1 > 0.0 && b1 < 1e4 * a1 && a1 < 1e4 * b1)) return NAN;
   const HertzContact hertz(a1, b1, pb.material.EffectiveModulus());
-  return first_contact + hertz.ApproachForForce(fz / cos_a) / cos_a;
+  // Kept within half the elastic limit: a guess beyond it would end the iteration with an
+  // error where the secant from a shallower start still finds the load.
+  const double sink = hertz.ApproachForForce(fz / cos_a) / cos_a;
+  return first_contact + std::min(sink, 0.5 * pb.options->max_interpenetration);
 }
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
