@@ -36,10 +36,7 @@ struct Fixture {
 
   Fixture() {
     wrc::test::TableContent content;
-    content.axes = {{"y", wrc::test::Linspace(-10.0, 10.0, 41)},
-                    {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
-                    {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
-                    {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+    content.axes = wrc::test::WheelsetAxes(41);
     content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
     // Smooth creep-force-like shapes with a flange-contact rise in y.
     content.function = [](int k, const std::vector<double>& x) {

@@ -31,17 +31,17 @@ void Validate(const FftInfluenceOperator& op, const std::vector<double>& h,
 void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double approach,
             const std::vector<double>* displacement, NormalWorkspace& ws, NormalSolution& sol) {
   const std::size_t n = h.size();
-  if (displacement) {
-    ws.response = *displacement;
-  } else {
+  if (!displacement) {
     op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.response.data(), ws.convolution);
+    displacement = &ws.response;
   }
+  const std::vector<double>& u = *displacement;
   sol.deformed.resize(n);
   sol.approach = approach;
   double sum = 0.0, pmax = 0.0;
   int n_contact = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    sol.deformed[i] = h[i] - approach + ws.response[i];
+    sol.deformed[i] = h[i] - approach + u[i];
     sum += sol.pressure[i];
     pmax = std::max(pmax, sol.pressure[i]);
     n_contact += sol.pressure[i] > 0.0;
@@ -262,21 +262,21 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
 
   // The carried displacement is A·p of the final pressures when the last step kept it (it
   // differs from a fresh product by the round-off of at most kRefreshIterations updates,
-  // ~1e-15 relative), and saves the product of the deformed distance.
+  // ~1e-14 relative), and saves the product of the deformed distance.
   const std::vector<double>* displacement = displacement_valid ? &ws.displacement : nullptr;
   // The approach under force control is the mean gap over the final contact area.
   double approach = load.value;
   if (force_control) {
-    if (displacement) {
-      ws.gap = *displacement;
-    } else {
+    if (!displacement) {
       op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
+      displacement = &ws.gap;
     }
+    const std::vector<double>& u = *displacement;
     double sum_gap = 0.0;
     int n_active = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (sol.pressure[i] > 0.0) {
-        sum_gap += ws.gap[i] + h[i];
+        sum_gap += u[i] + h[i];
         ++n_active;
       }
     }

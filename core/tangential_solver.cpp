@@ -367,10 +367,10 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   //  - fast contraction (full slip: ~0.1 per sweep): each update also corrects the rows already
   //    swept, which doubles the direct work of a sweep but leaves every slip current, so the
   //    next sweep needs no FFT product; a fresh product every kRefreshSweeps sweeps keeps
-  //    round-off from drifting. That pays while the extra direct work, ~2 instructions per
-  //    pair of contact elements, stays below the product, ~150 per transform point: with
-  //    kDirectMargin for the cache misses of far rows, n_contact² < 30·points (a 750-element
-  //    heavy-haul patch, not a 2000-element one);
+  //    round-off from drifting. That pays while the extra direct work, a few instructions per
+  //    pair of contact elements, stays below the product, ~150 per transform point: measured,
+  //    n_contact² < 30·points (a 750-element heavy-haul patch gains, a 2000-element one
+  //    loses);
   //  - slow contraction (partial slip: 0.6–0.7): Anderson mixing, whose combined tractions
   //    need a fresh product anyway, and only the rows still to come are corrected.
   // Mixing starts once a sweep contracts the change by less than kSlowContraction.

@@ -89,9 +89,9 @@ struct Problem {
 // point of the contact locus: its curvatures along x (the wheel's, from the search) and along
 // the rail (the second difference of the gap over ±0.2 mm), projected on the surface normal
 // there; the normal force that carries fz, and the vertical shift that gives its approach.
-// Within ~30 % of the answer on the Manchester cases (the old guess, 0.01 mm into contact,
-// carried 5-30 % of the load): the first normal solve is then on a box of about the final
-// size, so its FFT plan and kernels serve the whole iteration. NaN where Hertz does not
+// Within 1-15 % of the final approach on the Manchester cases (the old guess, 0.01 mm into
+// contact, carried 5-30 % of the load): the first normal solve is then on a box of about the
+// final size, so its FFT plan and kernels serve the whole iteration. NaN where Hertz does not
 // apply (conformal contact: no lateral curvature).
 double HertzGuess(const Problem& pb, double fz, double first_contact) {
   const auto& samples = pb.search.samples;

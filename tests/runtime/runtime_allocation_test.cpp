@@ -146,10 +146,7 @@ TEST(RuntimeAllocation, CounterSeesAllocations) {
 TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
   wrc::test::ScratchFile scratch("allocation");
   wrc::test::TableContent content;
-  content.axes = {{"y", wrc::test::Linspace(-10, 10, 41)},
-                  {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
-                  {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
-                  {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+  content.axes = wrc::test::WheelsetAxes(41);
   content.outputs = {"fx", "fy", "fz", "mx", "my", "mz", "pmax", "contact_y", "contact_angle"};
   content.function = [](int k, const std::vector<double>& x) {
     return std::sin(0.3 * x[0] + k) + 100.0 * x[1] + std::cos(300.0 * x[3]) * x[2];
@@ -204,10 +201,7 @@ TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
 TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
   wrc::test::ScratchFile scratch("allocation-switch");
   wrc::test::TableContent content;
-  content.axes = {{"y", wrc::test::Linspace(-10, 10, 21)},
-                  {"roll", wrc::test::Linspace(-0.002, 0.002, 5)},
-                  {"yaw", wrc::test::Linspace(-0.01, 0.01, 5)},
-                  {"spin", wrc::test::Linspace(-0.01, 0.01, 9)}};
+  content.axes = wrc::test::WheelsetAxes(21);
   content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
   const auto failed = [](const std::vector<double>& x) { return x[0] == 5.0 && x[3] == 0.0; };
   content.function = [&](int k, const std::vector<double>& x) {

@@ -45,6 +45,15 @@ inline std::vector<double> Linspace(double first, double last, int n) {
   return values;
 }
 
+/// The four axes of a typical wheelset table: y over [−10, 10] mm with y_nodes nodes, roll
+/// ±0.002 (5 nodes), yaw ±0.01 (5) and spin ±0.01 (9).
+inline std::vector<TableAxis> WheelsetAxes(int y_nodes) {
+  return {{"y", Linspace(-10.0, 10.0, y_nodes)},
+          {"roll", Linspace(-0.002, 0.002, 5)},
+          {"yaw", Linspace(-0.01, 0.01, 5)},
+          {"spin", Linspace(-0.01, 0.01, 9)}};
+}
+
 /// Writes content to path (overwriting) as a complete, valid table.
 inline void WriteTable(const std::string& path, const TableContent& content) {
   h5::File file = h5::File::Create(path);
