@@ -313,19 +313,25 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     constexpr double kNormalPhase = 1e-5;
     const double phase_tolerance =
         c.effects.tangential ? std::max(0.25 * tolerance, kNormalPhase * fz) : 0.25 * tolerance;
-    // Normal solves far from fz need not be exact: their tolerance follows the force error of
-    // the previous step (1 % of it), between the solver's own tolerance and 1e-5.
-    double last_error = 1.0;
+    // Normal solves far from fz need not be exact: their tolerance is 1 % of the force error
+    // expected of this step, between the solver's own tolerance and 1e-5. The secant converges
+    // faster than linearly, so that is the last error times the last contraction, not the last
+    // error itself: a solve whose force is off by more than the step still to go misleads the
+    // secant and the bracket (seen: a loose 1e-5 solve 1.6e-6 of fz off, after which the
+    // bracket closed on the wrong side of fz and the iteration stalled 1.1e-6 away).
+    double last_error = 1.0, previous_error = 1.0;
     WheelRailResult last_normal;
     double last_normal_z = std::numeric_limits<double>::quiet_NaN();
     auto normal_force = [&](double z) {
       ++iterations;
       try {
+        const double expected_error = last_error * std::min(1.0, last_error / previous_error);
         const double normal_tolerance =
-            std::clamp(1e-2 * last_error, options.normal.tolerance, 1e-5);
+            std::clamp(1e-2 * expected_error, options.normal.tolerance, 1e-5);
         last_normal = SolveAt(pb, z, false, &timings, normal_tolerance);
         last_normal_z = z;
         const double f = last_normal.force_T(2);
+        previous_error = last_error;
         last_error = std::fabs(f - fz) / fz;
         return f;
       } catch (const InputError& e) {
