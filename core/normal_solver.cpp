@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -49,6 +50,44 @@ void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double
   sol.force = sum * op.grid().element_area();
   sol.pmax = pmax;
   sol.n_contact = n_contact;
+}
+
+// z = M·r on the elements in contact (p > 0) and zero elsewhere, for the 3 × 3 stencil M (centre
+// weight 1) and a residual r that is zero off the contact. `sums`: nx + 2 values of scratch.
+inline void ApplyLocalInverse(const LocalInverseStencil& m, const Grid& grid, const double* r,
+                              const double* p, double* sums, double* z) {
+  const int nx = grid.nx, ny = grid.ny;
+  // sums[i + 1] = r above + r below; sums[0] and sums[nx + 1] stay zero, as does the grid's
+  // outside.
+  sums[0] = sums[nx + 1] = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    const std::size_t row = static_cast<std::size_t>(j) * nx;
+    const double* mid = r + row;
+    const double* below = j > 0 ? mid - nx : nullptr;
+    const double* above = j + 1 < ny ? mid + nx : nullptr;
+    double* vertical = sums + 1;
+    if (below && above) {
+      for (int i = 0; i < nx; ++i) vertical[i] = below[i] + above[i];
+    } else if (below || above) {
+      std::copy(below ? below : above, (below ? below : above) + nx, vertical);
+    } else {
+      std::fill(vertical, vertical + nx, 0.0);
+    }
+    double* out = z + row;
+    const double* in_contact = p + row;
+    auto at = [&](int i) {
+      const double left = i > 0 ? mid[i - 1] : 0.0, right = i + 1 < nx ? mid[i + 1] : 0.0;
+      return mid[i] + m.x * (left + right) + m.y * vertical[i] +
+             m.diagonal * (vertical[i - 1] + vertical[i + 1]);
+    };
+    out[0] = in_contact[0] > 0.0 ? at(0) : 0.0;
+    for (int i = 1; i + 1 < nx; ++i) {
+      const double v = mid[i] + m.x * (mid[i - 1] + mid[i + 1]) + m.y * vertical[i] +
+                       m.diagonal * (vertical[i - 1] + vertical[i + 1]);
+      out[i] = in_contact[i] > 0.0 ? v : 0.0;
+    }
+    if (nx > 1) out[nx - 1] = in_contact[nx - 1] > 0.0 ? at(nx - 1) : 0.0;
+  }
 }
 
 }  // namespace
@@ -111,7 +150,24 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
   // projection p >= 0 after each step and re-activation of elements where the gap is negative.
   // Under force control the mean gap over the contact is the (unknown) approach, so it is
   // subtracted from the residual and the step, and the total force is re-imposed every step.
-  double gap_norm_old = 1.0;
+  //
+  // Preconditioned with the 3 × 3 centre M of the inverse influence matrix (as NormCG's FFT
+  // preconditioner, Vollebregt 2014, but local). The full inverse has a symbol that vanishes
+  // for smooth fields, which restricted to a narrow contact leaves the smooth modes as badly
+  // conditioned as before (tried in session 3: no gain on the multi-region heavy-haul patches);
+  // the truncated stencil keeps a positive symbol there and halves the iterations on every
+  // heavy-haul case. M restricted to the contact is positive definite (LocalInverse checks the
+  // symbol), so this is PCG on the contact set; under force control z is centred like r.
+  const std::optional<LocalInverseStencil> local_inverse =
+      options.precondition ? op.LocalInverse(InfluenceComponent::kNN) : std::nullopt;
+  const bool precondition = local_inverse.has_value();
+  const LocalInverseStencil stencil = local_inverse.value_or(LocalInverseStencil{});
+  ws.residual.resize(n);
+  if (precondition) {
+    ws.preconditioned.resize(n);
+    ws.column_sums.resize(static_cast<std::size_t>(op.grid().nx) + 2);
+  }
+  double rz_old = 1.0;
   bool conjugate = false;
   double mean_gap = 0.0;
   // The displacement u = A·p is carried from one iteration to the next: a step changes the
@@ -156,7 +212,9 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
     for (std::size_t i = 0; i < n; ++i) {
       const double g = ws.displacement[i] + h[i] - approach_shift;
       ws.gap[i] = g;
-      if (sol.pressure[i] > 0.0) {
+      const bool active = sol.pressure[i] > 0.0;
+      ws.residual[i] = active ? g : 0.0;
+      if (active) {
         sum_gap += g;
         sum_gap2 += g * g;
         ++n_active;
@@ -180,14 +238,34 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
       gap_norm = 0.0;
       for (std::size_t i = 0; i < n; ++i) {
         ws.gap[i] -= mean_gap;
-        if (sol.pressure[i] > 0.0) gap_norm += ws.gap[i] * ws.gap[i];
+        const bool active = sol.pressure[i] > 0.0;
+        ws.residual[i] = active ? ws.gap[i] : 0.0;
+        if (active) gap_norm += ws.gap[i] * ws.gap[i];
       }
     }
-    const double beta = conjugate ? gap_norm / gap_norm_old : 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      ws.direction[i] = sol.pressure[i] > 0.0 ? ws.gap[i] + beta * ws.direction[i] : 0.0;
+    // z = M·r (or r), and r·z for β.
+    const double* z = ws.residual.data();
+    double rz = gap_norm;
+    if (precondition) {
+      ApplyLocalInverse(stencil, op.grid(), ws.residual.data(), sol.pressure.data(),
+                        ws.column_sums.data(), ws.preconditioned.data());
+      if (force_control) {
+        double sum_z = 0.0;
+        for (std::size_t i = 0; i < n; ++i) sum_z += ws.preconditioned[i];
+        const double mean_z = sum_z / n_active;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (sol.pressure[i] > 0.0) ws.preconditioned[i] -= mean_z;
+        }
+      }
+      rz = 0.0;
+      for (std::size_t i = 0; i < n; ++i) rz += ws.residual[i] * ws.preconditioned[i];
+      z = ws.preconditioned.data();
     }
-    gap_norm_old = gap_norm;
+    const double beta = conjugate ? rz / rz_old : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ws.direction[i] = sol.pressure[i] > 0.0 ? z[i] + beta * ws.direction[i] : 0.0;
+    }
+    rz_old = rz;
 
     op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
     // den = Σ (r − mean r)·d over the contact = Σ r·d − mean r·Σ d.
