@@ -365,22 +365,35 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
 
   // Two ways to keep the slips of the contact current between sweeps:
   //  - fast contraction (full slip: ~0.1 per sweep): each update also corrects the rows already
-  //    swept, which doubles the direct work of a sweep but leaves every slip current, so the
-  //    next sweep needs no FFT product; a fresh product every kRefreshSweeps sweeps keeps
-  //    round-off from drifting. That pays while the extra direct work, a few instructions per
-  //    pair of contact elements, stays below the product, ~150 per transform point: measured,
-  //    n_contact² < 30·points (a 750-element heavy-haul patch gains, a 2000-element one
-  //    loses);
-  //  - slow contraction (partial slip: 0.6–0.7): Anderson mixing, whose combined tractions
-  //    need a fresh product anyway, and only the rows still to come are corrected.
+  //    swept, which leaves every slip current, so the next sweep needs no FFT product; a fresh
+  //    product every kRefreshSweeps sweeps keeps round-off from drifting;
+  //  - otherwise a fresh product starts every sweep, and an update corrects only the rows
+  //    within kNearRows after its own: the slip responds to a traction through the difference
+  //    of two influence coefficients, which decays as 1/r², so farther rows take the update from
+  //    the next product at the cost of no extra sweep (measured on heavy haul and Manchester;
+  //    4 rows cost z1.194 a sweep). Anderson mixing (slow contraction: partial slip, 0.6–0.7)
+  //    needs a fresh product anyway.
+  // The first pays while its direct work, ~5 instructions per pair of contact elements, costs
+  // less than the product (~115 per transform point) and the near rows' pairs together: an
+  // instruction ratio of ~22. kDirectMargin = 16 is the best of 12, 16 and 22 over the
+  // Manchester and heavy-haul cases (the others lose 1–7 % on one or more; z1.087 is direct,
+  // z1.162 and the Manchester cases take the product).
   // Mixing starts once a sweep contracts the change by less than kSlowContraction.
   constexpr int kRefreshSweeps = 8;
   constexpr double kSlowContraction = 0.3;
-  constexpr double kDirectMargin = 30.0;
+  constexpr double kDirectMargin = 16.0;
+  constexpr int kNearRows = 8;
   const double n_contact = static_cast<double>(contact.size());
+  double near_pairs = 0.0;  // pairs of contact-range elements in rows at most kNearRows apart
+  for (int j = box_j0; j <= box_j1; ++j) {
+    const double len = std::max(0, row_hi[j - box_j0] - row_lo[j - box_j0] + 1);
+    for (int l = j + 1; l <= std::min(box_j1, j + kNearRows); ++l) {
+      near_pairs += len * std::max(0, row_hi[l - box_j0] - row_lo[l - box_j0] + 1);
+    }
+  }
   const bool direct_pays =
-      options.direct_refresh &&
-      n_contact * n_contact < kDirectMargin * static_cast<double>(ext.transform_points());
+      options.direct_refresh && n_contact * n_contact - near_pairs <
+                                    kDirectMargin * static_cast<double>(ext.transform_points());
   bool slips_current = false;
   bool mixing = false;
   int since_refresh = 0;
@@ -470,7 +483,8 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       }
       const int updates = static_cast<int>(ws.offsets.size());
       if (updates > 0) {
-        for (int l = update_all ? box_j0 : j + 1; l <= box_j1; ++l) {
+        const int last = update_all ? box_j1 : std::min(box_j1, j + kNearRows);
+        for (int l = update_all ? box_j0 : j + 1; l <= last; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
           if (hi < lo || l == j) continue;
           const int dj = l - j;

@@ -154,8 +154,9 @@ TEST(TangentialSolver, AccelerationKeepsTheSolutionAndSavesSweeps) {
 
 // Sweeps that keep every slip current by direct updates (no FFT product per sweep; chosen when
 // the contact is small against its box, here ~200 elements in a 32 x 32 grid) give the
-// solution of sweeps that refresh the slips by FFT, to the solver's tolerance (see
-// AccelerationKeepsTheSolutionAndSavesSweeps for the bounds), in full and in partial slip.
+// solution of sweeps that refresh the slips by FFT and correct only the 8 rows after an update
+// directly (the contact is 16 rows tall, so far rows lag a sweep), to the solver's tolerance
+// (see AccelerationKeepsTheSolutionAndSavesSweeps for the bounds), in full and partial slip.
 TEST(TangentialSolver, DirectSlipUpdatesKeepTheSolution) {
   const Grid g = Grid::Covering(-4.0, 4.0, -4.0, 4.0, 0.25, 0.25);
   const double fn = 3000.0, mu = 0.3;
