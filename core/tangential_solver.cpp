@@ -253,6 +253,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   ws.py_ext.assign(ne, 0.0);
   ws.ux_ext.resize(ne);
   ws.uy_ext.resize(ne);
+  bool tractions_zero = true;  // then the slips are the rigid slips, without a product
   if (options.warm_start && sol.px.size() == n && sol.py.size() == n) {
     // Only elements in contact carry traction; the sweep never visits the others.
     for (int j = 0; j < ny; ++j) {
@@ -261,6 +262,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
         if (pb.pressure[I] > 0.0) {
           ws.px_ext[static_cast<std::size_t>(i) + static_cast<std::size_t>(nxe) * j] = sol.px[I];
           ws.py_ext[static_cast<std::size_t>(i) + static_cast<std::size_t>(nxe) * j] = sol.py[I];
+          tractions_zero = tractions_zero && sol.px[I] == 0.0 && sol.py[I] == 0.0;
         }
       }
     }
@@ -400,7 +402,17 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   double previous_residual = 0.0;
   for (int it = 1; it <= options.max_iterations; ++it) {
     if (options.acceleration_depth > 0) gather(x_start);
-    if (!slips_current || since_refresh >= kRefreshSweeps) {
+    if (tractions_zero) {
+      // A cold start: no tractions yet, so no displacements.
+      for (int l = box_j0; l <= box_j1; ++l) {
+        for (int k = box_i0; k < box_i1; ++k) {
+          ws.sx_box[box_index(k, l)] = pb.wx[g.index(k, l)];
+          ws.sy_box[box_index(k, l)] = pb.wy[g.index(k, l)];
+        }
+      }
+      tractions_zero = false;
+      since_refresh = 0;
+    } else if (!slips_current || since_refresh >= kRefreshSweeps) {
       ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
                           ws.convolution);
       for (int l = box_j0; l <= box_j1; ++l) {
