@@ -122,20 +122,23 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
     return summary;
   }
 
-  // Initial guess: the warm start, or a pressure that is uniform (force control) or
-  // proportional to the interpenetration through the element's own stiffness.
+  // Initial guess: the warm start, or a pressure that is uniform (force control) or, under
+  // approach control, shaped like Hertz's p ∝ sqrt(δ − h) on the interpenetration and scaled to
+  // the least elastic energy along that shape once its displacement is known (the first
+  // product, which the first iteration needs anyway). Measured on heavy haul: 27/29/31
+  // iterations become 21/26/28; pressures proportional to the interpenetration (with the
+  // element's own stiffness, the earlier start, or scaled the same way) take 26–31.
   const bool warm =
       options.warm_start && sol.pressure.size() == n &&
       std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
+  const bool hertz_start = !warm && !force_control;
   if (!warm) {
     sol.pressure.assign(n, 0.0);
     if (force_control) {
       std::fill(sol.pressure.begin(), sol.pressure.end(), load.value / (area * n));
     } else {
-      const double self = RectangleInfluence(InfluenceComponent::kNN, op.material(), 0.0, 0.0,
-                                             0.5 * op.grid().dx, 0.5 * op.grid().dy);
       for (std::size_t i = 0; i < n; ++i) {
-        sol.pressure[i] = std::max(0.0, load.value - h[i]) / self;
+        sol.pressure[i] = std::sqrt(std::max(0.0, load.value - h[i]));
       }
     }
   }
@@ -201,6 +204,19 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
       op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.displacement.data(),
                ws.convolution);
       since_refresh = 0;
+      if (it == 1 && hertz_start) {
+        // c = argmin ½c²·pᵀAp − c·pᵀ(δ − h), for p and A·p alike.
+        double work = 0.0, energy = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          work += sol.pressure[i] * (load.value - h[i]);
+          energy += sol.pressure[i] * ws.displacement[i];
+        }
+        const double scale = energy > 0.0 ? work / energy : 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          sol.pressure[i] *= scale;
+          ws.displacement[i] *= scale;
+        }
+      }
     }
     ++since_refresh;
     // The passes over the grid are fused where the arithmetic allows (they are a third of an
