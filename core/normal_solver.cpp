@@ -52,26 +52,35 @@ void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double
   sol.n_contact = n_contact;
 }
 
-// z = M·r on the elements in contact (p > 0) and zero elsewhere, for the 3 × 3 stencil M (centre
+// One row's stretch of elements that can carry pressure: [begin, end) in grid order.
+using Segment = std::pair<std::size_t, std::size_t>;
+
+// z = M·r on the elements in contact (p > 0) of the segments, for the 3 × 3 stencil M (centre
 // weight 1) and a residual r that is zero off the contact. `sums`: nx + 2 values of scratch.
-inline void ApplyLocalInverse(const LocalInverseStencil& m, const Grid& grid, const double* r,
+inline void ApplyLocalInverse(const LocalInverseStencil& m, const Grid& grid,
+                              const std::vector<Segment>& segments, const double* r,
                               const double* p, double* sums, double* z) {
   const int nx = grid.nx, ny = grid.ny;
-  // sums[i + 1] = r above + r below; sums[0] and sums[nx + 1] stay zero, as does the grid's
-  // outside.
+  // sums[i + 1] = r above + r below at column i; sums[0] and sums[nx + 1] stay zero, as does
+  // the grid's outside.
   sums[0] = sums[nx + 1] = 0.0;
-  for (int j = 0; j < ny; ++j) {
+  double* vertical = sums + 1;
+  for (const auto& [begin, end] : segments) {
+    const int j = static_cast<int>(begin / static_cast<std::size_t>(nx));
     const std::size_t row = static_cast<std::size_t>(j) * nx;
+    const int lo = static_cast<int>(begin - row), hi = static_cast<int>(end - row);
     const double* mid = r + row;
     const double* below = j > 0 ? mid - nx : nullptr;
     const double* above = j + 1 < ny ? mid + nx : nullptr;
-    double* vertical = sums + 1;
+    // The stencil reads columns lo − 1 … hi: set here, or the zero sentinels at −1 and nx.
+    const int from = std::max(lo - 1, 0), to = std::min(hi + 1, nx);
     if (below && above) {
-      for (int i = 0; i < nx; ++i) vertical[i] = below[i] + above[i];
+      for (int i = from; i < to; ++i) vertical[i] = below[i] + above[i];
     } else if (below || above) {
-      std::copy(below ? below : above, (below ? below : above) + nx, vertical);
+      const double* only = below ? below : above;
+      std::copy(only + from, only + to, vertical + from);
     } else {
-      std::fill(vertical, vertical + nx, 0.0);
+      std::fill(vertical + from, vertical + to, 0.0);
     }
     double* out = z + row;
     const double* in_contact = p + row;
@@ -80,13 +89,14 @@ inline void ApplyLocalInverse(const LocalInverseStencil& m, const Grid& grid, co
       return mid[i] + m.x * (left + right) + m.y * vertical[i] +
              m.diagonal * (vertical[i - 1] + vertical[i + 1]);
     };
-    out[0] = in_contact[0] > 0.0 ? at(0) : 0.0;
-    for (int i = 1; i + 1 < nx; ++i) {
+    const int inner_lo = std::max(lo, 1), inner_hi = std::min(hi, nx - 1);
+    if (lo == 0) out[0] = in_contact[0] > 0.0 ? at(0) : 0.0;
+    for (int i = inner_lo; i < inner_hi; ++i) {
       const double v = mid[i] + m.x * (mid[i - 1] + mid[i + 1]) + m.y * vertical[i] +
                        m.diagonal * (vertical[i - 1] + vertical[i + 1]);
       out[i] = in_contact[i] > 0.0 ? v : 0.0;
     }
-    if (nx > 1) out[nx - 1] = in_contact[nx - 1] > 0.0 ? at(nx - 1) : 0.0;
+    if (hi == nx && nx > 1) out[nx - 1] = in_contact[nx - 1] > 0.0 ? at(nx - 1) : 0.0;
   }
 }
 
@@ -165,7 +175,34 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
       options.precondition ? op.LocalInverse(InfluenceComponent::kNN) : std::nullopt;
   const bool precondition = local_inverse.has_value();
   const LocalInverseStencil stencil = local_inverse.value_or(LocalInverseStencil{});
-  ws.residual.resize(n);
+  // The elements that can carry pressure: under approach control those interpenetrating at
+  // the approach (h < δ), as A·p >= 0 keeps every other gap open; under force control, whose
+  // approach is unknown, all. Kept as one stretch per row, so that the passes of an iteration
+  // skip the rest of the box (on the combined heavy-haul patches, two thirds of it or more).
+  ws.segments.clear();
+  const std::size_t nx = static_cast<std::size_t>(op.grid().nx);
+  if (force_control) {
+    for (std::size_t row = 0; row < n; row += nx) ws.segments.emplace_back(row, row + nx);
+  } else {
+    for (std::size_t row = 0; row < n; row += nx) {
+      std::size_t lo = row + nx, hi = row;
+      for (std::size_t i = row; i < row + nx; ++i) {
+        if (h[i] < load.value) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
+      }
+      if (hi > lo) ws.segments.emplace_back(lo, hi);
+    }
+    // A warm start may carry pressure where the gap is now open for good.
+    std::size_t open_from = 0;
+    for (const auto& [begin, end] : ws.segments) {
+      std::fill(sol.pressure.begin() + open_from, sol.pressure.begin() + begin, 0.0);
+      open_from = end;
+    }
+    std::fill(sol.pressure.begin() + open_from, sol.pressure.end(), 0.0);
+  }
+  ws.residual.assign(n, 0.0);  // zero off the segments, where the stencil reads it too
   if (precondition) {
     ws.preconditioned.resize(n);
     ws.column_sums.resize(static_cast<std::size_t>(op.grid().nx) + 2);
@@ -225,22 +262,24 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
     const double approach_shift = force_control ? 0.0 : load.value;
     double sum_gap = 0.0, sum_gap2 = 0.0;
     int n_active = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double g = ws.displacement[i] + h[i] - approach_shift;
-      ws.gap[i] = g;
-      const bool active = sol.pressure[i] > 0.0;
-      ws.residual[i] = active ? g : 0.0;
-      if (active) {
-        sum_gap += g;
-        sum_gap2 += g * g;
-        ++n_active;
+    for (const auto& [begin, end] : ws.segments) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const double g = ws.displacement[i] + h[i] - approach_shift;
+        ws.gap[i] = g;
+        const bool active = sol.pressure[i] > 0.0;
+        ws.residual[i] = active ? g : 0.0;
+        if (active) {
+          sum_gap += g;
+          sum_gap2 += g * g;
+          ++n_active;
+        }
       }
     }
     if (n_active == 0) {
       // Everything lifted off (only possible under approach control when the initial guess
       // overshot): restart from the interpenetration.
-      for (std::size_t i = 0; i < n; ++i) {
-        sol.pressure[i] = std::max(0.0, -ws.gap[i]);
+      for (const auto& [begin, end] : ws.segments) {
+        for (std::size_t i = begin; i < end; ++i) sol.pressure[i] = std::max(0.0, -ws.gap[i]);
       }
       conjugate = false;
       displacement_valid = false;
@@ -252,7 +291,7 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
       // approach and differ from it by far less).
       mean_gap = sum_gap / n_active;
       gap_norm = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t i = 0; i < n; ++i) {  // the segments: the whole grid
         ws.gap[i] -= mean_gap;
         const bool active = sol.pressure[i] > 0.0;
         ws.residual[i] = active ? ws.gap[i] : 0.0;
@@ -263,9 +302,9 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
     const double* z = ws.residual.data();
     double rz = gap_norm;
     if (precondition) {
-      ApplyLocalInverse(stencil, op.grid(), ws.residual.data(), sol.pressure.data(),
+      ApplyLocalInverse(stencil, op.grid(), ws.segments, ws.residual.data(), sol.pressure.data(),
                         ws.column_sums.data(), ws.preconditioned.data());
-      if (force_control) {
+      if (force_control) {  // the segments: the whole grid
         double sum_z = 0.0;
         for (std::size_t i = 0; i < n; ++i) sum_z += ws.preconditioned[i];
         const double mean_z = sum_z / n_active;
@@ -274,24 +313,30 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
         }
       }
       rz = 0.0;
-      for (std::size_t i = 0; i < n; ++i) rz += ws.residual[i] * ws.preconditioned[i];
+      for (const auto& [begin, end] : ws.segments) {
+        for (std::size_t i = begin; i < end; ++i) rz += ws.residual[i] * ws.preconditioned[i];
+      }
       z = ws.preconditioned.data();
     }
     const double beta = conjugate ? rz / rz_old : 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      ws.direction[i] = sol.pressure[i] > 0.0 ? z[i] + beta * ws.direction[i] : 0.0;
+    for (const auto& [begin, end] : ws.segments) {  // the direction is zero off them
+      for (std::size_t i = begin; i < end; ++i) {
+        ws.direction[i] = sol.pressure[i] > 0.0 ? z[i] + beta * ws.direction[i] : 0.0;
+      }
     }
     rz_old = rz;
 
     op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
     // den = Σ (r − mean r)·d over the contact = Σ r·d − mean r·Σ d.
     double num = 0.0, rd = 0.0, sum_response = 0.0, sum_direction = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (sol.pressure[i] > 0.0) {
-        num += ws.gap[i] * ws.direction[i];
-        rd += ws.response[i] * ws.direction[i];
-        sum_response += ws.response[i];
-        sum_direction += ws.direction[i];
+    for (const auto& [begin, end] : ws.segments) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (sol.pressure[i] > 0.0) {
+          num += ws.gap[i] * ws.direction[i];
+          rd += ws.response[i] * ws.direction[i];
+          sum_response += ws.response[i];
+          sum_direction += ws.direction[i];
+        }
       }
     }
     const double mean_response = force_control ? sum_response / n_active : 0.0;
@@ -303,30 +348,32 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
     ws.corrected.clear();
     ws.correction.clear();
     double sum = 0.0, change = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double old = sol.pressure[i];
-      double p = old;
-      if (old > 0.0) {
-        const double stepped = old - tau * ws.direction[i];
-        p = std::max(0.0, stepped);
-        if (stepped < 0.0) {
-          ws.corrected.push_back(i);
-          ws.correction.push_back(-stepped);  // the set pressure minus the −τ·d step
+    for (const auto& [begin, end] : ws.segments) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const double old = sol.pressure[i];
+        double p = old;
+        if (old > 0.0) {
+          const double stepped = old - tau * ws.direction[i];
+          p = std::max(0.0, stepped);
+          if (stepped < 0.0) {
+            ws.corrected.push_back(i);
+            ws.correction.push_back(-stepped);  // the set pressure minus the −τ·d step
+          }
+        } else if (ws.gap[i] < 0.0) {
+          // Interpenetration outside the contact: let the element carry load again.
+          p = std::max(0.0, -tau * ws.gap[i]);
+          if (p > 0.0) {
+            overlap = true;
+            ws.corrected.push_back(i);
+            ws.correction.push_back(p);
+          }
         }
-      } else if (ws.gap[i] < 0.0) {
-        // Interpenetration outside the contact: let the element carry load again.
-        p = std::max(0.0, -tau * ws.gap[i]);
-        if (p > 0.0) {
-          overlap = true;
-          ws.corrected.push_back(i);
-          ws.correction.push_back(p);
-        }
+        sol.pressure[i] = p;
+        sum += p;
+        change += std::fabs(p - old);
       }
-      sol.pressure[i] = p;
-      sum += p;
-      change += std::fabs(p - old);
-      ws.displacement[i] -= tau * ws.response[i];
     }
+    for (std::size_t i = 0; i < n; ++i) ws.displacement[i] -= tau * ws.response[i];
     conjugate = !overlap;
 
     double scale = 1.0;

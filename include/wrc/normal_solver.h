@@ -3,6 +3,8 @@
 /// The normal contact problem on a grid (paper Eq. 12a–b): find pressures p >= 0 with deformed
 /// distance e = h + A·p >= 0 and p·e = 0, for prescribed approach or prescribed total force.
 
+#include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "wrc/influence_operator.h"
@@ -61,6 +63,8 @@ struct NormalWorkspace {
   std::vector<double> residual;        ///< the gap on the contact, zero elsewhere
   std::vector<double> preconditioned;  ///< the residual after the preconditioner
   std::vector<double> column_sums;     ///< one grid row (+2): residual above + below
+  /// The elements that can carry pressure, one [begin, end) stretch per grid row.
+  std::vector<std::pair<std::size_t, std::size_t>> segments;
   std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
   std::vector<double> correction;      ///< their pressure minus the unclipped step
 };

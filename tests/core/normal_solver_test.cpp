@@ -230,6 +230,34 @@ TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
   }
 }
 
+// A warm start from a deeper approach carries pressure where the gap is now open for good
+// (outside the interpenetration, which the solver no longer visits): the solution is still the
+// cold one, to the tolerance.
+TEST(NormalSolver, WarmStartFromADeeperApproachGivesTheColdSolution) {
+  const Grid g = Grid::Covering(-2.0, 2.0, -2.0, 2.0, 0.1, 0.1);
+  const FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
+  std::vector<double> h(g.size());
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) h[g.index(i, j)] = (g.x(i) * g.x(i) + g.y(j) * g.y(j)) / 920.0;
+  }
+  NormalWorkspace ws;
+  NormalSolution warm, cold;
+  NormalOptions options;
+  ASSERT_EQ(SolveNormal(op, h, NormalLoad::Approach(0.004), options, ws, warm).status,
+            SolverStatus::kConverged);
+  options.warm_start = true;
+  ASSERT_EQ(SolveNormal(op, h, NormalLoad::Approach(0.001), options, ws, warm).status,
+            SolverStatus::kConverged);
+  options.warm_start = false;
+  ASSERT_EQ(SolveNormal(op, h, NormalLoad::Approach(0.001), options, ws, cold).status,
+            SolverStatus::kConverged);
+  EXPECT_EQ(warm.n_contact, cold.n_contact);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    ASSERT_NEAR(warm.pressure[i], cold.pressure[i], 1e-7 * cold.pmax) << i;
+  }
+  EXPECT_NEAR(warm.force, cold.force, 1e-8 * cold.force);
+}
+
 TEST(NormalSolver, NoContactWhenApproachIsNegative) {
   const Grid g{8, 8, 0.5, 0.5, -2.0, -2.0};
   FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
