@@ -184,9 +184,7 @@ TEST(NormalSolver, PrescribedApproachGivesHertzForce) {
 // Two bumps 3 mm apart on one grid (the shape of a combined heavy-haul patch): the
 // preconditioned CG reaches the same solution as the plain one, at the default tolerance within
 // it of a 1e-13 solve, in fewer iterations; under approach and under force control.
-TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
-  const Grid g = Grid::Covering(-3.0, 3.0, -3.0, 5.0, 0.1, 0.1);
-  const FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
+std::vector<double> TwoBumps(const Grid& g) {
   std::vector<double> h(g.size());
   for (int j = 0; j < g.ny; ++j) {
     for (int i = 0; i < g.nx; ++i) {
@@ -196,10 +194,18 @@ TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
       h[g.index(i, j)] = std::min(first, second);
     }
   }
+  return h;
+}
+
+TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
+  const Grid g = Grid::Covering(-3.0, 3.0, -3.0, 5.0, 0.1, 0.1);
+  const FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
+  const std::vector<double> h = TwoBumps(g);
   for (const NormalLoad load : {NormalLoad::Approach(0.012), NormalLoad::Force(4000.0)}) {
     auto solve = [&](bool precondition, double tolerance, int* iterations) {
       NormalOptions options;
       options.precondition = precondition;
+      options.deflate = false;  // DeflatedSolveMatchesPlainSolve
       options.tolerance = tolerance;
       NormalWorkspace ws;
       NormalSolution sol;
@@ -227,6 +233,47 @@ TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
     EXPECT_NEAR(fast.force, exact.force, 1e-8 * exact.force) << force;
     EXPECT_LT(iterations, 0.8 * plain_iterations)
         << force << ": " << iterations << " against " << plain_iterations;
+  }
+}
+
+// The deflated last phase (approach control) reaches the solution of the active-set iteration
+// alone, at the default tolerance within it of a 1e-13 solve, in fewer iterations. On a coarse
+// and a fine grid of the two bumps (about 250 and 1000 elements in contact).
+TEST(NormalSolver, DeflatedSolveMatchesPlainSolve) {
+  for (const double d : {0.1, 0.05}) {
+    const Grid g = Grid::Covering(-3.0, 3.0, -3.0, 5.0, d, d);
+    const FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
+    const std::vector<double> h = TwoBumps(g);
+    auto solve = [&](bool deflate, double tolerance, int* iterations) {
+      NormalOptions options;
+      options.deflate = deflate;
+      options.tolerance = tolerance;
+      NormalWorkspace ws;
+      NormalSolution sol;
+      const NormalSummary s = SolveNormal(op, h, NormalLoad::Approach(0.012), options, ws, sol);
+      EXPECT_EQ(s.status, SolverStatus::kConverged);
+      if (iterations) *iterations = s.iterations;
+      return sol;
+    };
+    const NormalSolution exact = solve(false, 1e-13, nullptr);
+    int plain_iterations = 0, iterations = 0;
+    const NormalSolution plain = solve(false, 1e-8, &plain_iterations);
+    const NormalSolution deflated = solve(true, 1e-8, &iterations);
+    double plain_error = 0.0, error = 0.0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      plain_error = std::max(plain_error, std::fabs(plain.pressure[i] - exact.pressure[i]));
+      error = std::max(error, std::fabs(deflated.pressure[i] - exact.pressure[i]));
+    }
+    EXPECT_GT(exact.n_contact, 200) << d;
+    EXPECT_EQ(deflated.n_contact, exact.n_contact) << d;
+    EXPECT_LT(error, 1e-7 * exact.pmax) << d;
+    EXPECT_LT(plain_error, 1e-7 * exact.pmax) << d;
+    EXPECT_NEAR(deflated.force, exact.force, 1e-8 * exact.force) << d;
+    // Complementarity of the deflated result: no interpenetration anywhere.
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      ASSERT_GE(deflated.deformed[i], -1e-8 * 0.012) << d << " " << i;
+    }
+    EXPECT_LT(iterations, plain_iterations) << d;
   }
 }
 
