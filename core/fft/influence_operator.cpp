@@ -101,14 +101,17 @@ ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>();
   ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size());
   ws.buffers_->spectrum_a = fftw::ComplexBuffer(plan_->complex_size());
-  ws.buffers_->spectrum_b = fftw::ComplexBuffer(plan_->complex_size());
-  ws.buffers_->spectrum_c = fftw::ComplexBuffer(plan_->complex_size());
+  if (has(InfluenceComponent::kXX)) {  // ApplyTangential's other two spectra (~0.5 MB each)
+    ws.buffers_->spectrum_b = fftw::ComplexBuffer(plan_->complex_size());
+    ws.buffers_->spectrum_c = fftw::ComplexBuffer(plan_->complex_size());
+  }
   return ws;
 }
 
 bool FftInfluenceOperator::Fits(const ConvolutionWorkspace& ws) const {
   return ws.buffers_ && ws.buffers_->spectrum_a.size() == plan_->complex_size() &&
-         ws.buffers_->rows.size() == plan_->row_buffer_size();
+         ws.buffers_->rows.size() == plan_->row_buffer_size() &&
+         (!has(InfluenceComponent::kXX) || ws.buffers_->spectrum_c.size() == plan_->complex_size());
 }
 
 void FftInfluenceOperator::Forward(const double* in, std::complex<double>* spectrum,

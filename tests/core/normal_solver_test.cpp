@@ -54,6 +54,22 @@ TEST(FftInfluenceOperator, EqualsDenseOperator) {
   }
 }
 
+// A normal-only operator's workspace holds one spectrum, too few for the tangential block's
+// product; the other way round it fits.
+TEST(FftInfluenceOperator, WorkspaceFitsOnlyWhatItCanServe) {
+  const Grid g{12, 10, 0.2, 0.2, 0.0, 0.0};
+  const FftInfluenceOperator normal(g, Steel(), {InfluenceComponent::kNN});
+  const FftInfluenceOperator tangential(
+      g, Steel(), {InfluenceComponent::kXX, InfluenceComponent::kYY, InfluenceComponent::kXY});
+  ConvolutionWorkspace small = normal.MakeWorkspace();
+  EXPECT_TRUE(normal.Fits(small));
+  EXPECT_FALSE(tangential.Fits(small));
+  std::vector<double> p(g.size(), 1.0), ux(g.size()), uy(g.size());
+  EXPECT_THROW(tangential.ApplyTangential(p.data(), p.data(), ux.data(), uy.data(), small),
+               std::logic_error);
+  EXPECT_TRUE(normal.Fits(tangential.MakeWorkspace()));
+}
+
 // The stencil is an approximate inverse: convolved with the kernel it leaves a few % of the
 // centre at the neighbouring offsets, where the kernel itself has 30–50 %. Square and elongated
 // cells alike (the heavy-haul and Manchester grids are square; others need not be).
