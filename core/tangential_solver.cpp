@@ -369,12 +369,13 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   //  - fast contraction (full slip: ~0.1 per sweep): each update also corrects the rows already
   //    swept, which leaves every slip current, so the next sweep needs no FFT product; a fresh
   //    product every kRefreshSweeps sweeps keeps round-off from drifting;
-  //  - otherwise a fresh product starts every sweep, and an update corrects only the rows
-  //    within kNearRows after its own: the slip responds to a traction through the difference
-  //    of two influence coefficients, which decays as 1/r², so farther rows take the update from
-  //    the next product at the cost of no extra sweep (measured on heavy haul and Manchester;
-  //    4 rows cost z1.194 a sweep). Anderson mixing (slow contraction: partial slip, 0.6–0.7)
-  //    needs a fresh product anyway.
+  //  - otherwise a fresh product starts every sweep. Before mixing (see below), an update
+  //    corrects only the rows within kNearRows after its own: the slip responds to a traction
+  //    through the difference of two influence coefficients, which decays as 1/r², so farther
+  //    rows take the update from the next product at the cost of no extra sweep in full slip
+  //    (measured on heavy haul; 4 rows cost z1.194 a sweep). While mixing (slow contraction:
+  //    partial slip, 0.6–0.7) all rows after it do: there the lag stalls the combination on
+  //    tall contacts (Manchester at 300 kN: 24 sweeps became 323 with 8 rows).
   // The first pays while its direct work, ~5 instructions per pair of contact elements, costs
   // less than the product (~115 per transform point) and the near rows' pairs together: an
   // instruction ratio of ~22. kDirectMargin = 16 is the best of 12, 16 and 22 over the
@@ -495,7 +496,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       }
       const int updates = static_cast<int>(ws.offsets.size());
       if (updates > 0) {
-        const int last = update_all ? box_j1 : std::min(box_j1, j + kNearRows);
+        const int last = update_all || mixing ? box_j1 : std::min(box_j1, j + kNearRows);
         for (int l = update_all ? box_j0 : j + 1; l <= last; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
           if (hi < lo || l == j) continue;
