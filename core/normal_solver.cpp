@@ -131,6 +131,80 @@ constexpr std::size_t kMaxDirectColumns = 48;
 // stopping rule is the same relative change of the pressures). Expects ws.displacement = A·p;
 // returns whether it converged, and otherwise leaves p >= 0 (the caller resumes) with the
 // displacement no longer A·p.
+// Row prefix sums of the coefficients: prefix[dj][d + nx] = Σ_{d' <= d} A(d', dj), with
+// prefix[dj][0] = 0 for d = −nx, so that a run of sources lo..hi adds P(i − lo) − P(i − hi − 1)
+// at column i of a row dj away. Rows of 2·nx values, dj from −(ny − 1).
+std::vector<double> RowPrefixSums(const InfluenceCoefficients& columns, int nx, int ny) {
+  const std::size_t width = 2 * static_cast<std::size_t>(nx);
+  std::vector<double> prefix(width * (2 * static_cast<std::size_t>(ny) - 1));
+  for (int dj = 1 - ny; dj < ny; ++dj) {
+    double* row = prefix.data() + width * static_cast<std::size_t>(dj + ny - 1);
+    const double* a = columns.origin() + columns.stride() * dj;
+    row[0] = 0.0;
+    for (int d = 1 - nx; d < nx; ++d) row[d + nx] = row[d + nx - 1] + a[d];
+  }
+  return prefix;
+}
+
+// A contact set C (grid indices in grid order) as runs of consecutive elements per row, and
+// cut into the blocks of a block × block tiling of the grid.
+struct ContactBlocks {
+  struct Run {
+    int row, lo, hi;    // columns lo..hi (inclusive) of one grid row
+    std::size_t first;  // index in C of column lo (for block runs: the block)
+  };
+  std::vector<Run> runs, block_runs;
+  std::vector<int> block;  // block of each element of C
+  int count = 0;
+};
+
+ContactBlocks GroupIntoBlocks(const std::vector<std::size_t>& contact, int nx, int ny,
+                              int block_size) {
+  ContactBlocks b;
+  for (std::size_t c = 0; c < contact.size(); ++c) {
+    const int row = static_cast<int>(contact[c] / nx), col = static_cast<int>(contact[c] % nx);
+    if (b.runs.empty() || b.runs.back().row != row || b.runs.back().hi + 1 != col) {
+      b.runs.push_back({row, col, col, c});
+    } else {
+      b.runs.back().hi = col;
+    }
+  }
+  const int blocks_x = (nx + block_size - 1) / block_size;
+  std::vector<int> id_of_tile(
+      static_cast<std::size_t>(blocks_x) * ((ny + block_size - 1) / block_size), -1);
+  b.block.resize(contact.size());
+  for (const ContactBlocks::Run& run : b.runs) {
+    for (int lo = run.lo; lo <= run.hi;) {
+      const int hi = std::min(run.hi, (lo / block_size + 1) * block_size - 1);
+      int& id =
+          id_of_tile[static_cast<std::size_t>(run.row / block_size) * blocks_x + lo / block_size];
+      if (id < 0) id = b.count++;
+      for (int col = lo; col <= hi; ++col) b.block[run.first + (col - run.lo)] = id;
+      b.block_runs.push_back({run.row, lo, hi, static_cast<std::size_t>(id)});
+      lo = hi + 1;
+    }
+  }
+  return b;
+}
+
+// A·Z on C (nc × blocks, column-major) from the row prefix sums: each block's response is the
+// sum of its row runs', two prefix values per run and element of C.
+void CoarseResponse(const ContactBlocks& b, const std::vector<double>& prefix, int nx, int ny,
+                    std::vector<double>& az) {
+  const std::size_t nc = b.block.size(), width = 2 * static_cast<std::size_t>(nx);
+  az.assign(nc * static_cast<std::size_t>(b.count), 0.0);
+  for (const ContactBlocks::Run& source : b.block_runs) {
+    double* column = az.data() + source.first * nc;
+    for (const ContactBlocks::Run& target : b.runs) {
+      const double* p =
+          prefix.data() + width * static_cast<std::size_t>(target.row - source.row + ny - 1) + nx;
+      double* out = column + target.first - target.lo;
+      for (int i = target.lo; i <= target.hi; ++i)
+        out[i] += p[i - source.lo] - p[i - source.hi - 1];
+    }
+  }
+}
+
 struct DeflationOutcome {
   bool converged = false;
   int iterations = 0;
@@ -152,16 +226,7 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
   const std::size_t n = h.size();
   DeflationOutcome outcome;
 
-  // Row prefix sums of the coefficients: prefix[dj][d + nx] = Σ_{d' <= d} A(d', dj), with
-  // prefix[dj][0] = 0 for d = −nx, so that a run lo..hi adds P(i − lo) − P(i − hi − 1) at i.
-  const std::size_t width = 2 * static_cast<std::size_t>(nx);
-  std::vector<double> prefix(width * (2 * static_cast<std::size_t>(ny) - 1));
-  for (int dj = 1 - ny; dj < ny; ++dj) {
-    double* row = prefix.data() + width * static_cast<std::size_t>(dj + ny - 1);
-    const double* a = columns.origin() + columns.stride() * dj;
-    row[0] = 0.0;
-    for (int d = 1 - nx; d < nx; ++d) row[d + nx] = row[d + nx - 1] + a[d];
-  }
+  const std::vector<double> prefix = RowPrefixSums(columns, nx, ny);
   // C as a 0/1 mask of the grid (also the preconditioner's contact mask).
   ws.mask.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) ws.mask[i] = sol.pressure[i] > 0.0 ? 1.0 : 0.0;
@@ -169,7 +234,7 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
 
   bool displacement_current = true;  // ws.displacement = A·p
   for (int round = 0; round < kRounds && displacement_current; ++round) {
-    // C in grid order, with its runs of consecutive elements per row and its blocks.
+    // C in grid order, its blocks, and A·Z on it.
     ws.contact.clear();
     for (const auto& [begin, end] : ws.segments) {
       for (std::size_t i = begin; i < end; ++i) {
@@ -178,50 +243,10 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
     }
     const std::size_t nc = ws.contact.size();
     if (nc == 0) break;
-    struct Run {
-      int row, lo, hi;    // columns lo..hi (inclusive) of one grid row
-      std::size_t first;  // index in C of column lo (for block runs: the block)
-    };
-    std::vector<Run> runs;
-    for (std::size_t c = 0; c < nc; ++c) {
-      const int row = static_cast<int>(ws.contact[c] / nx),
-                col = static_cast<int>(ws.contact[c] % nx);
-      if (runs.empty() || runs.back().row != row || runs.back().hi + 1 != col) {
-        runs.push_back({row, col, col, c});
-      } else {
-        runs.back().hi = col;
-      }
-    }
-    const int blocks_x = (nx + kBlock - 1) / kBlock;
-    std::vector<int> block_of_cell(
-        static_cast<std::size_t>(blocks_x) * ((ny + kBlock - 1) / kBlock), -1);
-    std::vector<int> block(nc);
-    std::vector<Run> block_runs;  // runs cut at block boundaries
-    int m = 0;
-    for (const Run& run : runs) {
-      for (int lo = run.lo; lo <= run.hi;) {
-        const int hi = std::min(run.hi, (lo / kBlock + 1) * kBlock - 1);
-        int& id =
-            block_of_cell[static_cast<std::size_t>(run.row / kBlock) * blocks_x + lo / kBlock];
-        if (id < 0) id = m++;
-        for (int col = lo; col <= hi; ++col) block[run.first + (col - run.lo)] = id;
-        block_runs.push_back({run.row, lo, hi, static_cast<std::size_t>(id)});
-        lo = hi + 1;
-      }
-    }
-    // AZ (nc × m, column-major) on C.
-    ws.coarse_response.assign(nc * static_cast<std::size_t>(m), 0.0);
-    for (const Run& source : block_runs) {
-      double* column = ws.coarse_response.data() + source.first * nc;
-      for (const Run& target : runs) {
-        const double* p =
-            prefix.data() + width * static_cast<std::size_t>(target.row - source.row + ny - 1) + nx;
-        double* out = column + target.first - target.lo;
-        for (int i = target.lo; i <= target.hi; ++i) {
-          out[i] += p[i - source.lo] - p[i - source.hi - 1];
-        }
-      }
-    }
+    const ContactBlocks blocks = GroupIntoBlocks(ws.contact, nx, ny, kBlock);
+    const std::vector<int>& block = blocks.block;
+    const int m = blocks.count;
+    CoarseResponse(blocks, prefix, nx, ny, ws.coarse_response);
     // E = Zᵀ·A·Z, symmetric positive definite as A_CC is (symmetrised against round-off).
     Eigen::MatrixXd coarse = Eigen::MatrixXd::Zero(m, m);
     const Eigen::Map<const Eigen::MatrixXd> az(ws.coarse_response.data(),
