@@ -541,9 +541,11 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     }
   }
 
-  // Final slip from a fresh product, and the totals.
-  ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
-                      ws.convolution);
+  // Final slip from a fresh product (or as the last sweep saw it), and the totals.
+  if (options.final_slip) {
+    ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                        ws.convolution);
+  }
   const double area = g.element_area();
   sol.fx = sol.fy = sol.mz = 0.0;
   sol.n_adhesion = sol.n_slip = 0;
@@ -553,8 +555,17 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       const std::size_t E = ext_index(i, j);
       sol.px[I] = ws.px_ext[E];
       sol.py[I] = ws.py_ext[E];
-      sol.sx[I] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
-      sol.sy[I] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+      if (options.final_slip) {
+        sol.sx[I] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
+        sol.sy[I] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+      } else if (summary.iterations > 0 && j >= box_j0 && j <= box_j1 && i >= box_i0 &&
+                 i < box_i1) {
+        sol.sx[I] = ws.sx_box[box_index(i, j)];
+        sol.sy[I] = ws.sy_box[box_index(i, j)];
+      } else {
+        sol.sx[I] = pb.wx[I];
+        sol.sy[I] = pb.wy[I];
+      }
       sol.fx += sol.px[I] * area;
       sol.fy += sol.py[I] * area;
       sol.mz += (g.x(i) * sol.py[I] - g.y(j) * sol.px[I]) * area;

@@ -308,6 +308,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
   result.ws = wy;
   TangentialSolution ts;
   TangentialOptions tangential_options = ctx.options->tangential;
+  tangential_options.final_slip = ctx.options->keep_fields;  // only the fields show the slip
   if (cache.has_tangential) {
     Remap(cache.tangential_box, cache.tangential.px, box, ts.px);
     Remap(cache.tangential_box, cache.tangential.py, box, ts.py);

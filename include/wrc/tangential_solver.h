@@ -59,6 +59,11 @@ struct TangentialOptions {
   /// grid (set to zero outside the contact), e.g. the previous solve of a force iteration;
   /// otherwise from zero tractions.
   bool warm_start = false;
+  /// Compute the slip field from a fresh product of the final tractions (one product, an
+  /// eighth of a full-slip heavy-haul solve). Off when nobody reads the field: the slips are
+  /// then the ones the last sweep used inside the contact's box (current to the tolerance) and
+  /// the rigid slip outside it. Tractions, forces and states are the same either way.
+  bool final_slip = true;
 };
 
 /// Input of a tangential solve on the operator's grid.

@@ -218,6 +218,39 @@ TEST(TangentialSolver, TallPartialSlipContactConvergesWithProductsPerSweep) {
   EXPECT_LE(s.iterations, 60);
 }
 
+// Without the final product the tractions, forces and states are the same, and the slips in
+// contact are those of the last sweep: in partial slip within the tolerance's reach of the
+// fresh product's (a traction change below 1e-7·μ·p moves the slip by the elastic compliance,
+// ~1e-7 of the creepage here).
+TEST(TangentialSolver, SkippingTheFinalProductKeepsTheSolution) {
+  const Grid g = Grid::Covering(-4.0, 4.0, -4.0, 4.0, 0.2, 0.2);
+  const double fn = 10000.0, mu = 0.3;
+  const Strip strip = SolveNormalOn(g, 0.001087, 0.001087, fn);
+  const SteadyRollingOperator op(g, Steel());
+  TangentialProblem pb;
+  pb.pressure = strip.pressure;
+  pb.mu = {mu};
+  pb.wx.assign(g.size(), 0.0008);
+  pb.wy.assign(g.size(), -0.0004);
+  TangentialWorkspace ws;
+  TangentialOptions options;
+  TangentialSolution fresh, last_sweep;
+  ASSERT_EQ(SolveTangential(op, pb, options, ws, fresh).status, SolverStatus::kConverged);
+  options.final_slip = false;
+  ASSERT_EQ(SolveTangential(op, pb, options, ws, last_sweep).status, SolverStatus::kConverged);
+  EXPECT_GT(fresh.n_adhesion, 0);
+  EXPECT_EQ(last_sweep.fx, fresh.fx);
+  EXPECT_EQ(last_sweep.fy, fresh.fy);
+  EXPECT_EQ(last_sweep.state, fresh.state);
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    EXPECT_EQ(last_sweep.px[k], fresh.px[k]);
+    if (fresh.state[k] != ElementState::kExterior) {
+      ASSERT_NEAR(last_sweep.sx[k], fresh.sx[k], 1e-6 * 0.0008) << k;
+      ASSERT_NEAR(last_sweep.sy[k], fresh.sy[k], 1e-6 * 0.0008) << k;
+    }
+  }
+}
+
 TEST(TangentialSolver, RejectsBadInput) {
   const Grid g{4, 4, 0.5, 0.5, 0.0, 0.0};
   const SteadyRollingOperator op(g, Steel());
