@@ -41,13 +41,17 @@ PaddedPlan2d::PaddedPlan2d(int n0, int n1) : n0_(n0), n1_(n1) {
   // Plans run later on other fftw_malloc'ed buffers, which have the same alignment.
   ComplexBuffer rows(row_buffer_size());
   ComplexBuffer spectrum(complex_size());
+  ComplexBuffer staging(complex_size());
   auto* r = reinterpret_cast<fftw_complex*>(rows.data());
   auto* c = reinterpret_cast<fftw_complex*>(spectrum.data());
+  auto* st = reinterpret_cast<fftw_complex*>(staging.data());
   const int nc = n1 / 2 + 1;
   std::lock_guard<std::mutex> lock(PlannerMutex());
   row_forward_ = fftw_plan_dft_1d(n1, r, r, FFTW_FORWARD, FFTW_ESTIMATE);
   row_backward_ = fftw_plan_dft_1d(n1, r, r, FFTW_BACKWARD, FFTW_ESTIMATE);
-  column_forward_ = fftw_plan_many_dft(1, &n0, nc, c, nullptr, nc, 1, c, nullptr, nc, 1,
+  // Out of place: FFTW keeps the input of an out-of-place complex transform unless told
+  // otherwise (FFTW_PRESERVE_INPUT is the default there), which keeps the staging padding zero.
+  column_forward_ = fftw_plan_many_dft(1, &n0, nc, st, nullptr, nc, 1, c, nullptr, nc, 1,
                                        FFTW_FORWARD, FFTW_ESTIMATE);
   column_backward_ = fftw_plan_many_dft(1, &n0, nc, c, nullptr, nc, 1, c, nullptr, nc, 1,
                                         FFTW_BACKWARD, FFTW_ESTIMATE);
@@ -72,8 +76,11 @@ PaddedPlan2d::~PaddedPlan2d() {
 __attribute__((target_clones("avx2", "default")))
 #endif
 void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double>* spectrum,
-                           std::complex<double>* rows) const {
+                           std::complex<double>* rows, Staging& staging) const {
   using Complex = std::complex<double>;
+  if (staging.values.size() != complex_size()) {
+    throw std::logic_error("FFT staging buffer made for another transform size");
+  }
   const int nc = n1_ / 2 + 1;
   const int pairs = (ny + 1) / 2;
   Complex* z = rows;
@@ -81,7 +88,7 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
     // Rows a = 2m and b = 2m + 1 as one complex row a + i·b.
     const double* a = in + static_cast<std::size_t>(2 * m) * nx;
     const double* b = 2 * m + 1 < ny ? a + nx : nullptr;
-    Complex* sa = spectrum + static_cast<std::size_t>(2 * m) * nc;
+    Complex* sa = staging.values.data() + static_cast<std::size_t>(2 * m) * nc;
     Complex* sb = sa + nc;  // row 2m + 1 < n0: n0 is even and 2m < ny <= n0
     // Rows of zeros (the contact's gaps, or elements out of contact in a CG direction) have a
     // zero spectrum: a scan of the values costs far less than their transform.
@@ -104,10 +111,15 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
       sb[k] = Complex(0.5 * d.imag(), -0.5 * d.real());
     }
   }
-  std::fill(spectrum + static_cast<std::size_t>(2 * pairs) * nc, spectrum + complex_size(),
-            Complex(0.0, 0.0));
+  // Rows past 2·pairs are zero unless an earlier transform of more rows left values there.
+  if (staging.dirty_rows > 2 * pairs) {
+    std::fill(staging.values.data() + static_cast<std::size_t>(2 * pairs) * nc,
+              staging.values.data() + static_cast<std::size_t>(staging.dirty_rows) * nc,
+              Complex(0.0, 0.0));
+  }
+  staging.dirty_rows = 2 * pairs;
   fftw_execute_dft(static_cast<fftw_plan>(column_forward_),
-                   reinterpret_cast<fftw_complex*>(spectrum),
+                   reinterpret_cast<fftw_complex*>(staging.values.data()),
                    reinterpret_cast<fftw_complex*>(spectrum));
 }
 

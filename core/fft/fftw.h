@@ -62,10 +62,20 @@ class PaddedPlan2d {
   /// Complex values of the row buffer both transforms need (one row).
   std::size_t row_buffer_size() const { return static_cast<std::size_t>(n1_); }
 
+  /// Where Forward puts its row stage before the columns are transformed out of place into
+  /// the spectrum: rows past the ones last written stay zero, so the zero padding (at least
+  /// half of the rows) is not cleared again for every transform.
+  struct Staging {
+    explicit Staging(const PaddedPlan2d& plan) : values(plan.complex_size()) {}
+    ComplexBuffer values;  // zero-initialised
+    int dirty_rows = 0;    // rows [0, dirty_rows) may hold values
+  };
+
   /// Unnormalised forward transform of `in` (ny rows of nx values, row stride nx; zero
-  /// elsewhere; ny <= n0, nx <= n1) into `spectrum` (complex_size). `rows`: row_buffer_size.
+  /// elsewhere; ny <= n0, nx <= n1) into `spectrum` (complex_size). `rows`: row_buffer_size;
+  /// `staging`: made for this plan's size.
   void Forward(const double* in, int ny, int nx, std::complex<double>* spectrum,
-               std::complex<double>* rows) const;
+               std::complex<double>* rows, Staging& staging) const;
   /// Unnormalised backward transform of `spectrum` (overwritten), of which only the first ny
   /// rows and nx columns are written to `out` (row stride nx).
   void Backward(std::complex<double>* spectrum, int ny, int nx, double* out,
@@ -88,7 +98,7 @@ class PaddedPlan2d {
   int n1_;
   void* row_forward_ = nullptr;      // fftw_plan: one complex row of n1
   void* row_backward_ = nullptr;     // fftw_plan
-  void* column_forward_ = nullptr;   // fftw_plan: n1/2 + 1 columns of n0, in place
+  void* column_forward_ = nullptr;   // fftw_plan: n1/2 + 1 columns of n0, staging → spectrum
   void* column_backward_ = nullptr;  // fftw_plan
 };
 

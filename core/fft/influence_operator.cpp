@@ -9,6 +9,8 @@
 namespace wrc {
 
 struct ConvolutionWorkspace::Buffers {
+  explicit Buffers(const fftw::PaddedPlan2d& plan) : staging(plan) {}
+  fftw::PaddedPlan2d::Staging staging;
   fftw::ComplexBuffer rows;
   fftw::ComplexBuffer spectrum_a;
   fftw::ComplexBuffer spectrum_b;
@@ -72,6 +74,7 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
   fftw::RealBuffer kernel(static_cast<std::size_t>(n0) * n1);
   fftw::ComplexBuffer spectrum(plan_->complex_size());
   fftw::ComplexBuffer rows(plan_->row_buffer_size());
+  fftw::PaddedPlan2d::Staging staging(*plan_);
   const double inv_n = 1.0 / static_cast<double>(kernel.size());
   for (InfluenceComponent c : components) {
     if (has(c)) continue;
@@ -83,7 +86,7 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
         kernel[static_cast<std::size_t>(row) * n1 + (di + n1) % n1] = coeffs.at(di, dj);
       }
     }
-    plan_->Forward(kernel.data(), n0, n1, spectrum.data(), rows.data());
+    plan_->Forward(kernel.data(), n0, n1, spectrum.data(), rows.data(), staging);
     auto& s = spectra_[Index(c)];
     s.assign(spectrum.data(), spectrum.data() + spectrum.size());
     for (auto& v : s) v *= inv_n;
@@ -98,7 +101,7 @@ std::size_t FftInfluenceOperator::transform_points() const {
 
 ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   ConvolutionWorkspace ws;
-  ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>();
+  ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>(*plan_);
   ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size());
   ws.buffers_->spectrum_a = fftw::ComplexBuffer(plan_->complex_size());
   if (has(InfluenceComponent::kXX)) {  // ApplyTangential's other two spectra (~0.5 MB each)
@@ -116,7 +119,7 @@ bool FftInfluenceOperator::Fits(const ConvolutionWorkspace& ws) const {
 
 void FftInfluenceOperator::Forward(const double* in, std::complex<double>* spectrum,
                                    ConvolutionWorkspace& ws) const {
-  plan_->Forward(in, grid_.ny, grid_.nx, spectrum, ws.buffers_->rows.data());
+  plan_->Forward(in, grid_.ny, grid_.nx, spectrum, ws.buffers_->rows.data(), ws.buffers_->staging);
 }
 
 void FftInfluenceOperator::Backward(std::complex<double>* spectrum, double* out,
@@ -178,7 +181,8 @@ std::optional<LocalInverseStencil> FftInfluenceOperator::LocalInverse(InfluenceC
   }
   fftw::ComplexBuffer spectrum(plan->complex_size());
   fftw::ComplexBuffer rows(plan->row_buffer_size());
-  plan->Forward(kernel.data(), kTorus, kTorus, spectrum.data(), rows.data());
+  fftw::PaddedPlan2d::Staging staging(*plan);
+  plan->Forward(kernel.data(), kTorus, kTorus, spectrum.data(), rows.data(), staging);
 
   // An even kernel has a real spectrum S, and the inverse at offset (a, b) rows and columns is
   // Σ cos(2π·k0·a/n)·cos(2π·k1·b/n) / S(k0, k1) up to a factor that the scaling to a centre of
