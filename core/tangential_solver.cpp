@@ -403,27 +403,26 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   double previous_residual = 0.0;
   for (int it = 1; it <= options.max_iterations; ++it) {
     if (options.acceleration_depth > 0) gather(x_start);
-    if (tractions_zero) {
-      // A cold start: no tractions yet, so no displacements.
-      for (int l = box_j0; l <= box_j1; ++l) {
-        for (int k = box_i0; k < box_i1; ++k) {
-          ws.sx_box[box_index(k, l)] = pb.wx[g.index(k, l)];
-          ws.sy_box[box_index(k, l)] = pb.wy[g.index(k, l)];
-        }
+    if (tractions_zero || !slips_current || since_refresh >= kRefreshSweeps) {
+      // A cold start has no tractions yet, so no displacements: the slips are the rigid ones.
+      if (!tractions_zero) {
+        ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                            ws.convolution);
       }
-      tractions_zero = false;
-      since_refresh = 0;
-    } else if (!slips_current || since_refresh >= kRefreshSweeps) {
-      ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
-                          ws.convolution);
       for (int l = box_j0; l <= box_j1; ++l) {
         for (int k = box_i0; k < box_i1; ++k) {
           const std::size_t E = ext_index(k, l);
           const std::size_t I = g.index(k, l);
-          ws.sx_box[box_index(k, l)] = pb.wx[I] + (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
-          ws.sy_box[box_index(k, l)] = pb.wy[I] + (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+          double ex = 0.0, ey = 0.0;  // elastic part of the slip
+          if (!tractions_zero) {
+            ex = (ws.ux_ext[E] - ws.ux_ext[E + 1]) * inv_dq;
+            ey = (ws.uy_ext[E] - ws.uy_ext[E + 1]) * inv_dq;
+          }
+          ws.sx_box[box_index(k, l)] = pb.wx[I] + ex;
+          ws.sy_box[box_index(k, l)] = pb.wy[I] + ey;
         }
       }
+      tractions_zero = false;
       since_refresh = 0;
     }
     ++since_refresh;
