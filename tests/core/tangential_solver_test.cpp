@@ -31,14 +31,20 @@ Strip SolveNormalOn(const Grid& g, double a1, double b1, double fn) {
   return {g, sol.pressure};
 }
 
-TangentialSolution Roll(const Strip& strip, double mu, double cksi, double ceta,
-                        TangentialSummary* summary) {
-  const SteadyRollingOperator op(strip.grid, Steel());
+// The problem of a strip rolling with creepages (cksi, ceta) everywhere and friction mu.
+TangentialProblem UniformCreepage(const Strip& strip, double mu, double cksi, double ceta) {
   TangentialProblem pb;
   pb.pressure = strip.pressure;
   pb.mu = {mu};
   pb.wx.assign(strip.grid.size(), cksi);
   pb.wy.assign(strip.grid.size(), ceta);
+  return pb;
+}
+
+TangentialSolution Roll(const Strip& strip, double mu, double cksi, double ceta,
+                        TangentialSummary* summary) {
+  const SteadyRollingOperator op(strip.grid, Steel());
+  const TangentialProblem pb = UniformCreepage(strip, mu, cksi, ceta);
   TangentialWorkspace ws;
   TangentialSolution sol;
   *summary = SolveTangential(op, pb, {}, ws, sol);
@@ -165,11 +171,7 @@ TEST(TangentialSolver, DirectSlipUpdatesKeepTheSolution) {
   double pmax = 0.0;
   for (double p : strip.pressure) pmax = std::max(pmax, p);
   for (const double creepage : {0.05, 0.0004}) {  // full slip, partial slip
-    TangentialProblem pb;
-    pb.pressure = strip.pressure;
-    pb.mu = {mu};
-    pb.wx.assign(g.size(), creepage);
-    pb.wy.assign(g.size(), -0.5 * creepage);
+    const TangentialProblem pb = UniformCreepage(strip, mu, creepage, -0.5 * creepage);
     TangentialSolution by_fft, direct;
     TangentialWorkspace ws;
     TangentialOptions options;
@@ -197,11 +199,7 @@ TEST(TangentialSolver, TallPartialSlipContactConvergesWithProductsPerSweep) {
   const double fn = 60000.0, mu = 0.3;
   const Strip strip = SolveNormalOn(g, 0.001087, 0.001087, fn);
   const SteadyRollingOperator op(g, Steel());
-  TangentialProblem pb;
-  pb.pressure = strip.pressure;
-  pb.mu = {mu};
-  pb.wx.assign(g.size(), 0.0004);
-  pb.wy.assign(g.size(), -0.0002);
+  const TangentialProblem pb = UniformCreepage(strip, mu, 0.0004, -0.0002);
   int rows = 0;
   for (int j = 0; j < g.ny; ++j) {
     bool any = false;
@@ -227,11 +225,7 @@ TEST(TangentialSolver, SkippingTheFinalProductKeepsTheSolution) {
   const double fn = 10000.0, mu = 0.3;
   const Strip strip = SolveNormalOn(g, 0.001087, 0.001087, fn);
   const SteadyRollingOperator op(g, Steel());
-  TangentialProblem pb;
-  pb.pressure = strip.pressure;
-  pb.mu = {mu};
-  pb.wx.assign(g.size(), 0.0008);
-  pb.wy.assign(g.size(), -0.0004);
+  const TangentialProblem pb = UniformCreepage(strip, mu, 0.0008, -0.0004);
   TangentialWorkspace ws;
   TangentialOptions options;
   TangentialSolution fresh, last_sweep;
