@@ -82,6 +82,7 @@ class FftInfluenceOperator {
 
  private:
   static std::size_t Index(InfluenceComponent c) { return static_cast<std::size_t>(c); }
+  std::optional<LocalInverseStencil> ComputeLocalInverse(InfluenceComponent c) const;
   void Forward(const double* in, std::complex<double>* spectrum, ConvolutionWorkspace& ws) const;
   void Backward(std::complex<double>* spectrum, double* out, ConvolutionWorkspace& ws) const;
 
