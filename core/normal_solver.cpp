@@ -490,11 +490,10 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
   // so u ← s·(u − τ·A·d + A·c) with the response A·d already at hand and A·c summed directly
   // from the influence coefficients (one column per corrected element). That saves one of the
   // two FFT products per iteration, also while the contact area still changes. With more than
-  // kMaxDirectColumns corrections the FFT is cheaper (a product costs 25–40 ns per element of
-  // the box, a column ~0.5), and u is recomputed. It is recomputed at least every
-  // kRefreshIterations anyway, so that round-off cannot accumulate: each carried update adds
-  // ~1e-16 of u, so 64 of them stay near 1e-14, six orders below the tolerance (measured: the
-  // heavy-haul forces move by 5e-16 of the load against a refresh every 16).
+  // kMaxDirectColumns corrections the FFT is cheaper, and u is recomputed. It is recomputed at
+  // least every kRefreshIterations anyway, so that round-off cannot accumulate: each carried
+  // update adds ~1e-16 of u, so 64 of them stay near 1e-14, six orders below the tolerance
+  // (measured: the heavy-haul forces move by 5e-16 of the load against a refresh every 16).
   constexpr int kRefreshIterations = 64;
   const InfluenceCoefficients columns(op.grid(), op.material(), InfluenceComponent::kNN);
   const Grid& grid = op.grid();
