@@ -259,4 +259,21 @@ TEST_F(ErrorMessages, UnreachableVerticalForce) {
   ExpectBadInput(Solve(case_file), {"case.toml", "state.fz = 1", "not reached"});
 }
 
+// toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable() when it meets some non-ASCII
+// characters where it allows white space (upstream marzer/tomlplusplus#190, #295). The core
+// compiles that parser in (core/io/toml_implementation.cpp), so these pin down what our build of
+// it does there: a syntax error for a stray combining mark, and the TOML meaning of a line-ending
+// backslash followed by '§'. A different compiler choice showing up as a crash fails here.
+TEST_F(ErrorMessages, NonAsciiWhereWhiteSpaceIsAllowedIsASyntaxError) {
+  int line = 0;
+  const fs::path case_file = WriteCaseWith("dx = 0.5", "dx = [1\xcc\xaa]", &line);
+  ExpectBadInput(Solve(case_file), {"case.toml:" + std::to_string(line), "TOML syntax error"});
+}
+
+TEST_F(ErrorMessages, NonAsciiAfterLineEndingBackslashIsKept) {
+  const fs::path case_file =
+      WriteCaseWith("type = \"wheel-rail\"", "type = \"\"\"\\\n\xc2\xa7wheel-rail\"\"\"");
+  ExpectBadInput(Solve(case_file), {"case.toml", "problem.type = \"\xc2\xa7wheel-rail\""});
+}
+
 }  // namespace
