@@ -72,9 +72,14 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
     const Eigen::Vector2d p = rail.PositionAt(sample.s);
     sample.y = p(0);
     sample.z = p(1);
-    sample.alpha = rail.InclinationAt(sample.s);
     sample.gap = std::numeric_limits<double>::infinity();
   }
+  // The inclination only where the wheel is located: it weighs interpenetration, and most
+  // samples are never located.
+  auto locate = [&](LocusSample& sample, double guess) {
+    sample.alpha = rail.InclinationAt(sample.s);
+    return Locate(wheel, sample.y, sample.z, guess, sample);
+  };
   // Most of the profile pair is far apart, and locating the wheel there is most of the cost,
   // so the samples are located in levels: every kStrides[0]-th first, then every
   // kStrides[1]-th, then all, each level only between samples of the previous one that may come
@@ -95,7 +100,7 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
   double smallest = std::numeric_limits<double>::infinity();
   for (const int k : located) {
     LocusSample& sample = search.samples[k];
-    sample.valid = Locate(wheel, sample.y, sample.z, x_guess, sample);
+    sample.valid = locate(sample, x_guess);
     if (sample.valid) {
       x_guess = sample.x;
       smallest = std::min(smallest, sample.gap);
@@ -124,7 +129,7 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
       double x_step = 0.0;
       for (int k = a + stride; k < b; k += stride) {
         LocusSample& sample = search.samples[k];
-        sample.valid = Locate(wheel, sample.y, sample.z, x_guess + x_step, sample);
+        sample.valid = locate(sample, x_guess + x_step);
         if (sample.valid) {
           x_step = sample.x - x_guess;
           x_guess = sample.x;

@@ -16,7 +16,7 @@ namespace wrc::wr {
 struct LocusSample {
   double s = 0.0;           ///< Rail arc length, mm.
   double y = 0.0, z = 0.0;  ///< Rail surface point, track frame.
-  double alpha = 0.0;       ///< Rail inclination, rad.
+  double alpha = 0.0;       ///< Rail inclination, rad (0 where the wheel was not located).
   double x = 0.0;           ///< Contact locus: x of the smallest gap, mm.
   double gap = 0.0;         ///< Smallest vertical gap at this lateral position, mm.
   double curvature = 0.0;   ///< d²gap/dx² at the locus, 1/mm (> 0).
