@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "wrc/errors.h"
 
@@ -39,10 +40,12 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
   // touches the track plane (z = 0) and sideways until its inner face, at gauge_height below
   // the track plane, lies at gauge_width/2.
   const int n = std::max(2, static_cast<int>(std::ceil(spline_->length() / kScanStep)));
+  std::vector<double> z_scan(n + 1);  // the rotated profile's z at the scan points
   double zmin = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= n; ++k) {
     const double s = spline_->length() * k / n;
-    zmin = std::min(zmin, (R_TR_ * ToEigen(spline_->PositionAt(s)))(1));
+    z_scan[k] = (R_TR_ * ToEigen(spline_->PositionAt(s)))(1);
+    zmin = std::min(zmin, z_scan[k]);
   }
   const double z_shift = -zmin;
   double y_gauge = std::numeric_limits<double>::infinity();
@@ -51,7 +54,8 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
   };
   for (int k = 0; k < n; ++k) {
     double a = spline_->length() * k / n, b = spline_->length() * (k + 1) / n;
-    double fa = height(a), fb = height(b);
+    double fa = z_scan[k] + z_shift - track.gauge_height;
+    const double fb = z_scan[k + 1] + z_shift - track.gauge_height;
     if ((fa > 0.0) == (fb > 0.0)) continue;
     for (int it = 0; it < 60; ++it) {  // bisection to 1e-18 of the step: exact enough
       const double m = 0.5 * (a + b), fm = height(m);
