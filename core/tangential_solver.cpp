@@ -248,7 +248,13 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   const int nx = g.nx, ny = g.ny, nxe = nx + 1;
   const std::size_t n = g.size(), ne = static_cast<std::size_t>(nxe) * ny;
   const FftInfluenceOperator& ext = op.extended();
-  if (!ext.Fits(ws.convolution)) ws.convolution = ext.MakeWorkspace();
+  // u = A·p on the extended grid. The workspace (and the operator's plan and spectra) are made
+  // at the first product: a solve that keeps its slips current by direct updates may need none.
+  auto apply_tangential = [&] {
+    if (!ext.Fits(ws.convolution)) ws.convolution = ext.MakeWorkspace();
+    ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
+                        ws.convolution);
+  };
   ws.px_ext.assign(ne, 0.0);
   ws.py_ext.assign(ne, 0.0);
   ws.ux_ext.resize(ne);
@@ -405,10 +411,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
     if (options.acceleration_depth > 0) gather(x_start);
     if (tractions_zero || !slips_current || since_refresh >= kRefreshSweeps) {
       // A cold start has no tractions yet, so no displacements: the slips are the rigid ones.
-      if (!tractions_zero) {
-        ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
-                            ws.convolution);
-      }
+      if (!tractions_zero) apply_tangential();
       for (int l = box_j0; l <= box_j1; ++l) {
         for (int k = box_i0; k < box_i1; ++k) {
           const std::size_t E = ext_index(k, l);
@@ -541,10 +544,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   }
 
   // Final slip from a fresh product (or as the last sweep saw it), and the totals.
-  if (options.final_slip) {
-    ext.ApplyTangential(ws.px_ext.data(), ws.py_ext.data(), ws.ux_ext.data(), ws.uy_ext.data(),
-                        ws.convolution);
-  }
+  if (options.final_slip) apply_tangential();
   const double area = g.element_area();
   sol.fx = sol.fy = sol.mz = 0.0;
   sol.n_adhesion = sol.n_slip = 0;

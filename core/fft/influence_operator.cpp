@@ -71,38 +71,44 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
   grid_.Validate();
   // Linear convolution of n values with offsets −(n−1)…(n−1) is exact as a circular one of
   // length >= 2n − 1; rounded up to a size FFTW transforms fast.
-  const auto [n0, n1] = fftw::PaddedPlan2d::FastSizes(2 * grid_.ny - 1, 2 * grid_.nx - 1);
-  plan_ = fftw::PaddedPlan2d::Shared(n0, n1);
+  std::tie(n0_, n1_) = fftw::PaddedPlan2d::FastSizes(2 * grid_.ny - 1, 2 * grid_.nx - 1);
+  for (InfluenceComponent c : components) prepared_components_[Index(c)] = true;
+}
 
-  fftw::RealBuffer kernel(static_cast<std::size_t>(n0) * n1);
-  fftw::ComplexBuffer spectrum(plan_->complex_size());
-  fftw::ComplexBuffer rows(plan_->row_buffer_size());
-  fftw::PaddedPlan2d::Staging staging(*plan_);
-  const double inv_n = 1.0 / static_cast<double>(kernel.size());
-  for (InfluenceComponent c : components) {
-    if (has(c)) continue;
-    const InfluenceCoefficients coeffs(grid_, material_, c);
-    std::fill(kernel.data(), kernel.data() + kernel.size(), 0.0);
-    for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
-      const int row = (dj + n0) % n0;
-      for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
-        kernel[static_cast<std::size_t>(row) * n1 + (di + n1) % n1] = coeffs.at(di, dj);
+void FftInfluenceOperator::Prepare() const {
+  std::call_once(prepared_, [this] {
+    plan_ = fftw::PaddedPlan2d::Shared(n0_, n1_);
+    fftw::RealBuffer kernel(static_cast<std::size_t>(n0_) * n1_);
+    fftw::ComplexBuffer spectrum(plan_->complex_size());
+    fftw::ComplexBuffer rows(plan_->row_buffer_size());
+    fftw::PaddedPlan2d::Staging staging(*plan_);
+    const double inv_n = 1.0 / static_cast<double>(kernel.size());
+    for (std::size_t index = 0; index < spectra_.size(); ++index) {
+      if (!prepared_components_[index]) continue;
+      const InfluenceCoefficients coeffs(grid_, material_, static_cast<InfluenceComponent>(index));
+      std::fill(kernel.data(), kernel.data() + kernel.size(), 0.0);
+      for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
+        const int row = (dj + n0_) % n0_;
+        for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
+          kernel[static_cast<std::size_t>(row) * n1_ + (di + n1_) % n1_] = coeffs.at(di, dj);
+        }
       }
+      plan_->Forward(kernel.data(), n0_, n1_, spectrum.data(), rows.data(), staging);
+      auto& s = spectra_[index];
+      s.assign(spectrum.data(), spectrum.data() + spectrum.size());
+      for (auto& v : s) v *= inv_n;
     }
-    plan_->Forward(kernel.data(), n0, n1, spectrum.data(), rows.data(), staging);
-    auto& s = spectra_[Index(c)];
-    s.assign(spectrum.data(), spectrum.data() + spectrum.size());
-    for (auto& v : s) v *= inv_n;
-  }
+  });
 }
 
 FftInfluenceOperator::~FftInfluenceOperator() = default;
 
 std::size_t FftInfluenceOperator::transform_points() const {
-  return static_cast<std::size_t>(plan_->n0()) * static_cast<std::size_t>(plan_->n1());
+  return static_cast<std::size_t>(n0_) * static_cast<std::size_t>(n1_);
 }
 
 ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
+  Prepare();
   ConvolutionWorkspace ws;
   ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>(*plan_);
   ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size());
@@ -115,9 +121,11 @@ ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
 }
 
 bool FftInfluenceOperator::Fits(const ConvolutionWorkspace& ws) const {
-  return ws.buffers_ && ws.buffers_->spectrum_a.size() == plan_->complex_size() &&
-         ws.buffers_->rows.size() == plan_->row_buffer_size() &&
-         (!has(InfluenceComponent::kXX) || ws.buffers_->spectrum_c.size() == plan_->complex_size());
+  // The sizes PaddedPlan2d gives (complex_size, row_buffer_size), without needing the plan.
+  const std::size_t complex_size = static_cast<std::size_t>(n0_) * (n1_ / 2 + 1);
+  return ws.buffers_ && ws.buffers_->spectrum_a.size() == complex_size &&
+         ws.buffers_->rows.size() == static_cast<std::size_t>(n1_) &&
+         (!has(InfluenceComponent::kXX) || ws.buffers_->spectrum_c.size() == complex_size);
 }
 
 void FftInfluenceOperator::Forward(const double* in, std::complex<double>* spectrum,
@@ -134,6 +142,7 @@ void FftInfluenceOperator::Apply(InfluenceComponent c, const double* in, double*
                                  ConvolutionWorkspace& ws) const {
   if (!has(c)) throw std::logic_error("influence component not prepared for this operator");
   if (!Fits(ws)) throw std::logic_error("convolution workspace does not fit this operator");
+  Prepare();
   std::complex<double>* s = ws.buffers_->spectrum_a.data();
   Forward(in, s, ws);
   MultiplyInPlace(spectra_[Index(c)], s);
@@ -147,6 +156,7 @@ void FftInfluenceOperator::ApplyTangential(const double* px, const double* py, d
     throw std::logic_error("tangential influence components not prepared for this operator");
   }
   if (!Fits(ws)) throw std::logic_error("convolution workspace does not fit this operator");
+  Prepare();
   std::complex<double>* sx = ws.buffers_->spectrum_a.data();
   std::complex<double>* sy = ws.buffers_->spectrum_b.data();
   std::complex<double>* su = ws.buffers_->spectrum_c.data();

@@ -7,6 +7,7 @@
 #include <array>
 #include <complex>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -44,8 +45,10 @@ struct LocalInverseStencil {
   double diagonal = 0.0;
 };
 
-/// Applies the influence coefficients of one grid by FFT. The kernels' spectra are computed once
-/// at construction; plans are made once and executed on workspace buffers.
+/// Applies the influence coefficients of one grid by FFT. The plan and the kernels' spectra are
+/// made once, at the first product or workspace (thread-safe): a tangential operator whose solve
+/// keeps its slips current by direct updates may never need them. Plans execute on workspace
+/// buffers.
 class FftInfluenceOperator {
  public:
   /// Prepares the kernels listed in `components` (others cannot be applied).
@@ -57,7 +60,7 @@ class FftInfluenceOperator {
 
   const Grid& grid() const { return grid_; }
   const CombinedElasticity& material() const { return material_; }
-  bool has(InfluenceComponent c) const { return spectra_[Index(c)].size() > 0; }
+  bool has(InfluenceComponent c) const { return prepared_components_[Index(c)]; }
   /// Points of the padded transform (n0·n1): the cost of a product scales with it.
   std::size_t transform_points() const;
 
@@ -83,14 +86,19 @@ class FftInfluenceOperator {
  private:
   static std::size_t Index(InfluenceComponent c) { return static_cast<std::size_t>(c); }
   std::optional<LocalInverseStencil> ComputeLocalInverse(InfluenceComponent c) const;
+  /// Makes the plan and the spectra, once.
+  void Prepare() const;
   void Forward(const double* in, std::complex<double>* spectrum, ConvolutionWorkspace& ws) const;
   void Backward(std::complex<double>* spectrum, double* out, ConvolutionWorkspace& ws) const;
 
   Grid grid_;
   CombinedElasticity material_;
-  std::shared_ptr<const fftw::PaddedPlan2d> plan_;
+  int n0_ = 0, n1_ = 0;  // padded transform size
+  std::array<bool, 6> prepared_components_{};
+  mutable std::once_flag prepared_;
+  mutable std::shared_ptr<const fftw::PaddedPlan2d> plan_;
   // Kernel spectra, scaled by 1/N so that Backward needs no extra pass; empty when not prepared.
-  std::array<std::vector<std::complex<double>>, 6> spectra_;
+  mutable std::array<std::vector<std::complex<double>>, 6> spectra_;
 };
 
 /// The same operator as a dense matrix-vector product: O(n²), for tests only.

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <random>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -68,6 +70,35 @@ TEST(FftInfluenceOperator, WorkspaceFitsOnlyWhatItCanServe) {
   EXPECT_THROW(tangential.ApplyTangential(p.data(), p.data(), ux.data(), uy.data(), small),
                std::logic_error);
   EXPECT_TRUE(normal.Fits(tangential.MakeWorkspace()));
+}
+
+// The plan and the spectra are made at the first product or workspace, once, also when two
+// threads ask at the same time: both get the dense operator's product.
+TEST(FftInfluenceOperator, PreparesOnceOnFirstUseFromAnyThread) {
+  const Grid g{24, 18, 0.2, 0.3, 0.0, 0.0};
+  const FftInfluenceOperator fft(g, Steel(), {InfluenceComponent::kNN});
+  const std::size_t points = fft.transform_points();  // known before any plan
+  EXPECT_GE(points, 35u * 47u);                       // padded to 2n - 1 at least
+  std::vector<double> in(g.size());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (double& v : in) v = uni(rng);
+  std::vector<double> expected(g.size());
+  DenseInfluenceOperator(g, Steel()).Apply(InfluenceComponent::kNN, in.data(), expected.data());
+  std::vector<std::vector<double>> out(2, std::vector<double>(g.size()));
+  std::vector<std::thread> threads;
+  for (auto& o : out) {
+    threads.emplace_back([&fft, &in, &o] {
+      ConvolutionWorkspace ws = fft.MakeWorkspace();
+      fft.Apply(InfluenceComponent::kNN, in.data(), o.data(), ws);
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(fft.transform_points(), points);
+  const double scale = *std::max_element(expected.begin(), expected.end());
+  for (const auto& o : out) {
+    for (std::size_t i = 0; i < o.size(); ++i) EXPECT_NEAR(o[i], expected[i], 1e-12 * scale);
+  }
 }
 
 // The stencil is an approximate inverse: convolved with the kernel it leaves a few % of the
