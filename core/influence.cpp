@@ -131,8 +131,18 @@ void SumCorners(const std::vector<double>& quadrant, bool odd_x, bool odd_y,
   table.values.resize(width * static_cast<std::size_t>(2 * hy + 1));
   for (int dj = 0; dj <= hy; ++dj) {
     double* row = table.values.data() + width * static_cast<std::size_t>(hy + dj) + hx;
-    for (int di = 0; di <= hx; ++di) {
-      row[di] = corner(di, dj) - corner(di - 1, dj) - corner(di, dj - 1) + corner(di - 1, dj - 1);
+    row[0] = corner(0, dj) - corner(-1, dj) - corner(0, dj - 1) + corner(-1, dj - 1);
+    if (dj == 0) {
+      for (int di = 1; di <= hx; ++di) {
+        row[di] = corner(di, 0) - corner(di - 1, 0) - corner(di, -1) + corner(di - 1, -1);
+      }
+    } else {
+      // Inside the quadrant no corner is mirrored: the same sum without the lookups' branches.
+      const double* upper = quadrant.data() + static_cast<std::size_t>(cx) * dj;
+      const double* lower = upper - cx;
+      for (int di = 1; di <= hx; ++di) {
+        row[di] = upper[di] - upper[di - 1] - lower[di] + lower[di - 1];
+      }
     }
     for (int di = 1; di <= hx; ++di) row[-di] = sign_x * row[di];
     if (dj > 0) {
