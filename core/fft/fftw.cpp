@@ -78,7 +78,8 @@ __attribute__((target_clones("avx2", "default")))
 void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double>* spectrum,
                            std::complex<double>* rows, Staging& staging) const {
   using Complex = std::complex<double>;
-  if (staging.values.size() != complex_size()) {
+  if (staging.values.size() != complex_size() ||
+      staging.zero_pairs.size() != static_cast<std::size_t>(n0_ / 2)) {
     throw std::logic_error("FFT staging buffer made for another transform size");
   }
   const int nc = n1_ / 2 + 1;
@@ -95,9 +96,13 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
     const bool zero = std::all_of(a, a + nx, [](double v) { return v == 0.0; }) &&
                       (!b || std::all_of(b, b + nx, [](double v) { return v == 0.0; }));
     if (zero) {
-      std::fill(sa, sa + 2 * nc, Complex(0.0, 0.0));
+      if (!staging.zero_pairs[m]) {
+        std::fill(sa, sa + 2 * nc, Complex(0.0, 0.0));
+        staging.zero_pairs[m] = 1;
+      }
       continue;
     }
+    staging.zero_pairs[m] = 0;
     for (int k = 0; k < nx; ++k) z[k] = Complex(a[k], b ? b[k] : 0.0);
     std::fill(z + nx, z + n1_, Complex(0.0, 0.0));
     fftw_execute_dft(static_cast<fftw_plan>(row_forward_), reinterpret_cast<fftw_complex*>(z),
@@ -112,12 +117,13 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
     }
   }
   // Rows past 2·pairs are zero unless an earlier transform of more rows left values there.
-  if (staging.dirty_rows > 2 * pairs) {
-    std::fill(staging.values.data() + static_cast<std::size_t>(2 * pairs) * nc,
-              staging.values.data() + static_cast<std::size_t>(staging.dirty_rows) * nc,
-              Complex(0.0, 0.0));
+  for (int m = pairs; m < n0_ / 2; ++m) {
+    if (!staging.zero_pairs[m]) {
+      Complex* sa = staging.values.data() + static_cast<std::size_t>(2 * m) * nc;
+      std::fill(sa, sa + 2 * nc, Complex(0.0, 0.0));
+      staging.zero_pairs[m] = 1;
+    }
   }
-  staging.dirty_rows = 2 * pairs;
   fftw_execute_dft(static_cast<fftw_plan>(column_forward_),
                    reinterpret_cast<fftw_complex*>(staging.values.data()),
                    reinterpret_cast<fftw_complex*>(spectrum));

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <utility>
+#include <vector>
 
 namespace wrc::fftw {
 
@@ -63,12 +64,14 @@ class PaddedPlan2d {
   std::size_t row_buffer_size() const { return static_cast<std::size_t>(n1_); }
 
   /// Where Forward puts its row stage before the columns are transformed out of place into
-  /// the spectrum: rows past the ones last written stay zero, so the zero padding (at least
-  /// half of the rows) is not cleared again for every transform.
+  /// the spectrum. Which pairs of rows hold zeros is tracked, so that the zero padding (at
+  /// least half of the rows) and the zero rows of the input (the gaps between contact regions,
+  /// the elements out of contact in a CG direction) are not cleared again for every transform.
   struct Staging {
-    explicit Staging(const PaddedPlan2d& plan) : values(plan.complex_size()) {}
-    ComplexBuffer values;  // zero-initialised
-    int dirty_rows = 0;    // rows [0, dirty_rows) may hold values
+    explicit Staging(const PaddedPlan2d& plan)
+        : values(plan.complex_size()), zero_pairs(static_cast<std::size_t>(plan.n0() / 2), 1) {}
+    ComplexBuffer values;          // zero-initialised
+    std::vector<char> zero_pairs;  // rows 2m and 2m + 1 hold zeros only
   };
 
   /// Unnormalised forward transform of `in` (ny rows of nx values, row stride nx; zero
