@@ -24,11 +24,14 @@ std::mutex& PlannerMutex() {
 void FreeDeleter::operator()(void* p) const { fftw_free(p); }
 
 template <typename T>
-Buffer<T>::Buffer(std::size_t n) : size_(n) {
+Buffer<T>::Buffer(std::size_t n, Uninitialized) : size_(n) {
   void* p = fftw_malloc(sizeof(T) * (n > 0 ? n : 1));
   if (p == nullptr) throw std::bad_alloc();
   data_.reset(static_cast<T*>(p));
-  for (std::size_t i = 0; i < n; ++i) data_[i] = T{};
+}
+template <typename T>
+Buffer<T>::Buffer(std::size_t n) : Buffer(n, Uninitialized{}) {
+  std::fill(data_.get(), data_.get() + n, T{});
 }
 template class Buffer<double>;
 template class Buffer<std::complex<double>>;
@@ -39,9 +42,10 @@ PaddedPlan2d::PaddedPlan2d(int n0, int n1) : n0_(n0), n1_(n1) {
                                 std::to_string(n1) + ": both must be even and >= 2");
   }
   // Plans run later on other fftw_malloc'ed buffers, which have the same alignment.
-  ComplexBuffer rows(row_buffer_size());
-  ComplexBuffer spectrum(complex_size());
-  ComplexBuffer staging(complex_size());
+  // FFTW_ESTIMATE plans without touching the arrays.
+  ComplexBuffer rows(row_buffer_size(), Uninitialized{});
+  ComplexBuffer spectrum(complex_size(), Uninitialized{});
+  ComplexBuffer staging(complex_size(), Uninitialized{});
   auto* r = reinterpret_cast<fftw_complex*>(rows.data());
   auto* c = reinterpret_cast<fftw_complex*>(spectrum.data());
   auto* st = reinterpret_cast<fftw_complex*>(staging.data());

@@ -16,11 +16,18 @@ struct FreeDeleter {
 
 /// An fftw_malloc'ed array: SIMD-aligned, so that plans made on one buffer run on any other
 /// (fftw_execute_dft_r2c with new arrays requires the same alignment as at planning time).
+/// Tag for a buffer that its first use overwrites entirely (a transform's output, a row that is
+/// filled before each transform): it is not zero-filled first.
+struct Uninitialized {};
+
 template <typename T>
 class Buffer {
  public:
   Buffer() = default;
+  /// n values, zero.
   explicit Buffer(std::size_t n);
+  /// n values, not initialised.
+  Buffer(std::size_t n, Uninitialized);
   T* data() { return data_.get(); }
   const T* data() const { return data_.get(); }
   std::size_t size() const { return size_; }

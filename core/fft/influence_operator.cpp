@@ -78,9 +78,9 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
 void FftInfluenceOperator::Prepare() const {
   std::call_once(prepared_, [this] {
     plan_ = fftw::PaddedPlan2d::Shared(n0_, n1_);
-    fftw::RealBuffer kernel(static_cast<std::size_t>(n0_) * n1_);
-    fftw::ComplexBuffer spectrum(plan_->complex_size());
-    fftw::ComplexBuffer rows(plan_->row_buffer_size());
+    fftw::RealBuffer kernel(static_cast<std::size_t>(n0_) * n1_, fftw::Uninitialized{});
+    fftw::ComplexBuffer spectrum(plan_->complex_size(), fftw::Uninitialized{});
+    fftw::ComplexBuffer rows(plan_->row_buffer_size(), fftw::Uninitialized{});
     fftw::PaddedPlan2d::Staging staging(*plan_);
     const double inv_n = 1.0 / static_cast<double>(kernel.size());
     for (std::size_t index = 0; index < spectra_.size(); ++index) {
@@ -111,11 +111,13 @@ ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   Prepare();
   ConvolutionWorkspace ws;
   ws.buffers_ = std::make_unique<ConvolutionWorkspace::Buffers>(*plan_);
-  ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size());
-  ws.buffers_->spectrum_a = fftw::ComplexBuffer(plan_->complex_size());
+  // Each product writes them before reading them.
+  const fftw::Uninitialized written_first;
+  ws.buffers_->rows = fftw::ComplexBuffer(plan_->row_buffer_size(), written_first);
+  ws.buffers_->spectrum_a = fftw::ComplexBuffer(plan_->complex_size(), written_first);
   if (has(InfluenceComponent::kXX)) {  // ApplyTangential's other two spectra (~0.5 MB each)
-    ws.buffers_->spectrum_b = fftw::ComplexBuffer(plan_->complex_size());
-    ws.buffers_->spectrum_c = fftw::ComplexBuffer(plan_->complex_size());
+    ws.buffers_->spectrum_b = fftw::ComplexBuffer(plan_->complex_size(), written_first);
+    ws.buffers_->spectrum_c = fftw::ComplexBuffer(plan_->complex_size(), written_first);
   }
   return ws;
 }
