@@ -99,7 +99,9 @@ double RectangleInfluence(InfluenceComponent c, const CombinedElasticity& m, dou
 // by the same closed form, so cached and fresh coefficients are bit-identical.
 struct CoefficientTable {
   int half_x = 0, half_y = 0;  // offsets −half…half
-  std::vector<double> values;  // (2·half_x + 1) × (2·half_y + 1), x fastest
+  // (2·half_x + 1) × (2·half_y + 1), x fastest. SumCorners writes every value, so they are not
+  // zero-filled first (a std::vector would, at 1 % of a heavy-haul solve).
+  std::unique_ptr<double[]> values;
   double at(int di, int dj) const {
     return values[static_cast<std::size_t>(di + half_x) +
                   static_cast<std::size_t>(2 * half_x + 1) * static_cast<std::size_t>(dj + half_y)];
@@ -128,9 +130,9 @@ void SumCorners(const std::vector<double>& quadrant, bool odd_x, bool odd_y,
     return negate ? -f : f;
   };
   const double sign_x = odd_x ? 1.0 : -1.0, sign_y = odd_y ? 1.0 : -1.0;
-  table.values.resize(width * static_cast<std::size_t>(2 * hy + 1));
+  table.values.reset(new double[width * static_cast<std::size_t>(2 * hy + 1)]);
   for (int dj = 0; dj <= hy; ++dj) {
-    double* row = table.values.data() + width * static_cast<std::size_t>(hy + dj) + hx;
+    double* row = table.values.get() + width * static_cast<std::size_t>(hy + dj) + hx;
     row[0] = corner(0, dj) - corner(-1, dj) - corner(0, dj - 1) + corner(-1, dj - 1);
     if (dj == 0) {
       for (int di = 1; di <= hx; ++di) {
@@ -146,7 +148,7 @@ void SumCorners(const std::vector<double>& quadrant, bool odd_x, bool odd_y,
     }
     for (int di = 1; di <= hx; ++di) row[-di] = sign_x * row[di];
     if (dj > 0) {
-      double* mirror = table.values.data() + width * static_cast<std::size_t>(hy - dj);
+      double* mirror = table.values.get() + width * static_cast<std::size_t>(hy - dj);
       const double* source = row - hx;
       for (std::size_t k = 0; k < width; ++k) mirror[k] = sign_y * source[k];
     }
@@ -266,7 +268,7 @@ InfluenceCoefficients::InfluenceCoefficients(const Grid& grid, const CombinedEla
   grid_.Validate();
   table_ = Table(component, material, grid_.dx, grid_.dy, grid_.nx - 1, grid_.ny - 1);
   stride_ = 2 * table_->half_x + 1;
-  origin_ = table_->values.data() + table_->half_x + stride_ * table_->half_y;
+  origin_ = table_->values.get() + table_->half_x + stride_ * table_->half_y;
 }
 
 }  // namespace wrc
