@@ -295,6 +295,17 @@ std::pair<int, int> PaddedPlan2d::FastSizes(int m0, int m1) {
   return best;
 }
 
+double PaddedPlan2d::PairCost(int n0, int n1) {
+  const LengthCost* c0 = nullptr;
+  const LengthCost* c1 = nullptr;
+  for (const LengthCost& c : kLengthCosts) {
+    if (c.n == n0) c0 = &c;
+    if (c.n == n1) c1 = &c;
+  }
+  if (!c0 || !c1) return 0.0;
+  return static_cast<double>(n0) * n1 * 0.5 * (c0->column + c1->row);
+}
+
 int PaddedPlan2d::FastSize(int m) {
   if (m <= 2) return 2;
   for (int n = m + (m % 2);; n += 2) {

@@ -100,6 +100,9 @@ class PaddedPlan2d {
   /// 84 x 73 box of a heavy-haul patch (m1 = 167, m0 = 145): 150 x 200 instead of 160 x 192,
   /// a third fewer instructions per transform pair.
   static std::pair<int, int> FastSizes(int m0, int m1);
+  /// Instructions of one Forward + Backward pair of the full n0 × n1 transform, from the same
+  /// measured table as FastSizes (0 for lengths beyond it).
+  static double PairCost(int n0, int n1);
   /// The process-wide plan of this size (made on first use; thread-safe).
   static std::shared_ptr<const PaddedPlan2d> Shared(int n0, int n1);
 

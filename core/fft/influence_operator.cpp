@@ -107,6 +107,8 @@ std::size_t FftInfluenceOperator::transform_points() const {
   return static_cast<std::size_t>(n0_) * static_cast<std::size_t>(n1_);
 }
 
+double FftInfluenceOperator::ProductCost() const { return fftw::PaddedPlan2d::PairCost(n0_, n1_); }
+
 ConvolutionWorkspace FftInfluenceOperator::MakeWorkspace() const {
   Prepare();
   ConvolutionWorkspace ws;

@@ -63,6 +63,8 @@ class FftInfluenceOperator {
   bool has(InfluenceComponent c) const { return prepared_components_[Index(c)]; }
   /// Points of the padded transform (n0·n1): the cost of a product scales with it.
   std::size_t transform_points() const;
+  /// Estimated instructions of one product (Apply), from FFTW's measured costs per length.
+  double ProductCost() const;
 
   /// A workspace sized for this operator.
   ConvolutionWorkspace MakeWorkspace() const;

@@ -69,10 +69,10 @@ struct NormalWorkspace {
   std::vector<double> column_sums;     ///< one grid row (+2): residual above + below
   /// The elements that can carry pressure, one [begin, end) stretch per grid row.
   std::vector<std::pair<std::size_t, std::size_t>> segments;
-  /// The deflated phase: the contact set, A·Z on it (column-major), its vectors on the set, and
-  /// the set as a 0/1 mask of the grid.
+  /// The deflated phase: the contact set, A·Z on it (column-major), its vectors on the set
+  /// (w: A·d), and the set as a 0/1 mask of the grid.
   std::vector<std::size_t> contact;
-  std::vector<double> coarse_response, x, r, z, d, mask;
+  std::vector<double> coarse_response, x, r, z, d, w, mask;
   std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
   std::vector<double> correction;      ///< their pressure minus the unclipped step
 };
