@@ -238,7 +238,10 @@ std::vector<double> ArcLengths(const gsl::Spline& y, const gsl::Spline& z, doubl
     double sum = 0.0;
     for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
       const double at = mid + half * rule.nodes[k];
-      sum += rule.weights[k] * std::hypot(y.DerivativeOn(i, at), z.DerivativeOn(i, at));
+      // The plain root: the speed is ~1 (arc-length parameter), far from over- or underflow,
+      // and std::hypot's rescaling was a tenth of reading a profile.
+      const double dy = y.DerivativeOn(i, at), dz = z.DerivativeOn(i, at);
+      sum += rule.weights[k] * std::sqrt(dy * dy + dz * dz);
     }
     arc[i + 1] = arc[i] + half * sum;
   }
