@@ -218,9 +218,32 @@ void AddRunResponse(const double* kernel, const double* __restrict d, int source
   const double* base = kernel + (target_lo - source_lo);  // base[t − k] = K(...)
   int t = 0;
 #if defined(__GNUC__)
-  // Blocks of eight responses stay in registers while every source adds to them (as in the
+  // Blocks of responses stay in registers while every source adds to them (as in the
   // tangential solver's AddRowSlipTerms).
   typedef double Lanes __attribute__((vector_size(32)));
+  for (; t + 16 <= target_count; t += 16) {
+    Lanes a0, a1, a2, a3;
+    std::memcpy(&a0, out + t, sizeof a0);
+    std::memcpy(&a1, out + t + 4, sizeof a1);
+    std::memcpy(&a2, out + t + 8, sizeof a2);
+    std::memcpy(&a3, out + t + 12, sizeof a3);
+    for (int k = 0; k < source_count; ++k) {
+      const double* c = base + t - k;
+      Lanes c0, c1, c2, c3;
+      std::memcpy(&c0, c, sizeof c0);
+      std::memcpy(&c1, c + 4, sizeof c1);
+      std::memcpy(&c2, c + 8, sizeof c2);
+      std::memcpy(&c3, c + 12, sizeof c3);
+      a0 += c0 * d[k];
+      a1 += c1 * d[k];
+      a2 += c2 * d[k];
+      a3 += c3 * d[k];
+    }
+    std::memcpy(out + t, &a0, sizeof a0);
+    std::memcpy(out + t + 4, &a1, sizeof a1);
+    std::memcpy(out + t + 8, &a2, sizeof a2);
+    std::memcpy(out + t + 12, &a3, sizeof a3);
+  }
   for (; t + 8 <= target_count; t += 8) {
     Lanes a0, a1;
     std::memcpy(&a0, out + t, sizeof a0);
@@ -341,14 +364,14 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
     // The products of this phase only need A·d on C. Summed directly they cost |C|² pairs of
     // elements, against the FFT's product over the padded grid, which also carries the
     // displacement off C; that is only read after the round (complementarity, the caller), so
-    // the direct way refreshes it there with one product. Direct where it costs less than 0.7
-    // of a product (the refresh spread over a round's ~5 products): on heavy_haul_z1.087 (749
-    // elements in a 26 400-point transform) 0.78 M instructions against 1.5 M, and on small
-    // patches; the Manchester patches of ~500 elements and the larger heavy-haul contacts stay
-    // with the FFT. kDirectPairCost: instructions per pair of AddRunResponse (measured).
-    constexpr double kDirectPairCost = 1.4;
+    // the direct way refreshes it there with one product. With one refresh per round of ~5
+    // products the break-even is 0.8 of a product; the table's product costs run high on small
+    // grids (Manchester lost 2 % at 0.8), so direct only below 0.55 of one: on heavy_haul_z1.087
+    // (749 elements in a 26 400-point transform) 0.63 M instructions against 1.5 M, and on
+    // small patches. kDirectPairCost: instructions per pair of AddRunResponse (measured).
+    constexpr double kDirectPairCost = 1.1;
     const bool direct = kDirectPairCost * static_cast<double>(nc) * static_cast<double>(nc) <
-                        0.7 * op.ProductCost();
+                        0.55 * op.ProductCost();
     // w = A·d on C (d, w: values on C); with the FFT also the displacement += step·A·d.
     auto response = [&](const std::vector<double>& d) {
       if (direct) {
