@@ -508,9 +508,11 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       for (int i = row_hi[j - box_j0]; i >= b; --i) {
         const std::size_t I = g.index(i, j);
         const std::size_t E = ext_index(i, j);
-        const double old_px = ws.px_ext[E], old_py = ws.py_ext[E];
         // The update shifts the tractions of elements b..i of this row alike (a change of the
         // difference d_i = p_i − p_(i+1)); the elements downstream are solved after this one.
+        // The shifts of the updates so far (row_change) are added to an element when it is
+        // reached, which leaves its traction final (later updates shift elements below it).
+        const double old_px = ws.px_ext[E] + row_change_x, old_py = ws.py_ext[E] + row_change_y;
         // Its effect on the own slip: (A(0) − A(i − b + 1))/δq.
         const double kx = (axx.at(0, 0) - axx.at(i - b + 1, 0)) * inv_dq;
         const double ky = (ayy.at(0, 0) - ayy.at(i - b + 1, 0)) * inv_dq;
@@ -524,12 +526,10 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
           sol.state[I] = r.slip ? ElementState::kSlip : ElementState::kAdhesion;
         }
         const double dpx = new_px - old_px, dpy = new_py - old_py;
+        ws.px_ext[E] = new_px;
+        ws.py_ext[E] = new_py;
         if (dpx == 0.0 && dpy == 0.0) continue;
         max_change = std::max(max_change, Magnitude(dpx, dpy));
-        for (int m = b; m <= i; ++m) {
-          ws.px_ext[ext_index(m, j)] += dpx;
-          ws.py_ext[ext_index(m, j)] += dpy;
-        }
         // Slip change at (k, l): Σ_(m=b..i) [A(k−m) − A(k+1−m)]·Δ/δq = [A(k−i) − A(k−b+1)]·Δ/δq.
         // Only the slip of elements in contact is read before the next FFT refresh, so only
         // the contact range of each row is corrected (its coefficients are contiguous), and
