@@ -293,6 +293,25 @@ double Spline::DerivativeOn(std::size_t interval, double x) const {
   return result;
 }
 
+void Spline::DerivativesOn(std::size_t interval, const double* x, std::size_t count,
+                           double* out) const {
+  if (type_ != SplineType::kCubic) {
+    for (std::size_t k = 0; k < count; ++k) out[k] = DerivativeOn(interval, x[k]);
+    return;
+  }
+  // EvalCubicDerivative's arithmetic on the piece it would find for these points.
+  const gsl_spline* spline = state_->spline.get();
+  const std::size_t i = std::min(interval, x_.size() - 2);
+  const CubicPiece p = PieceOn(spline->interp->state, spline->x, spline->y, i);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!(x[k] >= spline->x[i] && x[k] <= spline->x[i + 1])) {
+      throw GslError("Spline::DerivativesOn", GSL_EDOM);
+    }
+    const double t = x[k] - spline->x[i];
+    out[k] = p.b + t * (2.0 * p.c + t * 3.0 * p.d);
+  }
+}
+
 double Spline::SecondDerivative(double x) const {
   double result = 0.0;
   CheckStatus(gsl_spline_eval_deriv2_e(state_->spline.get(), x, nullptr, &result),

@@ -50,6 +50,12 @@ class Spline {
   /// f'(x) for x in knot interval [knots()[interval], knots()[interval + 1]], without the
   /// search for the interval (x is not checked against it): for loops that walk the intervals.
   double DerivativeOn(std::size_t interval, double x) const;
+  /// out[k] = f'(x[k]) for `count` points of one knot interval, as DerivativeOn gives them
+  /// (at the interval's right end from its own piece, where DerivativeOn takes the next one: the
+  /// same to round-off). A SplineType::kCubic spline takes its piece once for all of them (the
+  /// arc-length quadrature of a profile evaluates five points per interval). Throws GslError
+  /// (GSL_EDOM) for a point outside the interval.
+  void DerivativesOn(std::size_t interval, const double* x, std::size_t count, double* out) const;
   /// ∫_a^b f(x) dx with a, b in [x_min(), x_max()].
   double Integral(double a, double b) const;
 

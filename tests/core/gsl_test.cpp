@@ -245,4 +245,30 @@ TEST(GslSpline, DerivativeOnAnIntervalMatchesTheSearchedOne) {
   }
 }
 
+TEST(GslSpline, DerivativesOnAnIntervalEqualDerivativeOn) {
+  // Several points of one interval at once: the same values as DerivativeOn, to the last bit
+  // (the cubic type takes its piece once; the others ask GSL per point); points outside the
+  // interval are a domain error.
+  const std::vector<double> x{0.0, 0.3, 1.1, 1.5, 2.9, 3.0, 4.4};
+  const std::vector<double> f{1.0, 0.2, -0.7, 0.4, 2.5, 2.4, -1.0};
+  std::vector<wrc::gsl::Spline> splines;
+  splines.emplace_back(x, f, wrc::gsl::SplineType::kNaturalCubic);
+  splines.emplace_back(x, f, wrc::gsl::CubicEnd::kNatural, wrc::gsl::CubicEnd::kNatural);
+  splines.emplace_back(x, f, wrc::gsl::CubicEnd::kNotAKnot, wrc::gsl::CubicEnd::kNatural);
+  for (const wrc::gsl::Spline& spline : splines) {
+    for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+      std::vector<double> at, out(4);
+      for (double t : {0.0, 0.2, 0.7, 0.999}) at.push_back(x[i] + t * (x[i + 1] - x[i]));
+      spline.DerivativesOn(i, at.data(), at.size(), out.data());
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        EXPECT_EQ(out[k], spline.DerivativeOn(i, at[k]))
+            << "type " << static_cast<int>(spline.type()) << " interval " << i << " k " << k;
+      }
+    }
+  }
+  const double outside = 2.0;
+  double out = 0.0;
+  EXPECT_THROW(splines[1].DerivativesOn(0, &outside, 1, &out), GslError);
+}
+
 }  // namespace wrc::gsl

@@ -887,10 +887,14 @@ TEST(ProfileKinks, DisabledGivesTheSplineThroughAllPoints) {
     const Profile profile = ReadProfile(ProfilePath(name), ProfileKind::kRail, options);
     EXPECT_TRUE(profile.kinks.empty());
     const ProfileSpline spline(profile);
-    // One pair of GSL natural cubic splines over all knots, as before kink detection: equal to
-    // the last bit.
-    const gsl::Spline y(spline.knots(), profile.y);
-    const gsl::Spline z(spline.knots(), profile.z);
+    // One pair of natural cubic splines over all knots, as before kink detection: equal to the
+    // last bit to wrc's own cubic type with natural ends (which the profile uses), and to
+    // GSL's gsl_interp_cspline, the same spline, to round-off.
+    using gsl::CubicEnd;
+    const gsl::Spline y(spline.knots(), profile.y, CubicEnd::kNatural, CubicEnd::kNatural);
+    const gsl::Spline z(spline.knots(), profile.z, CubicEnd::kNatural, CubicEnd::kNatural);
+    const gsl::Spline gsl_y(spline.knots(), profile.y, gsl::SplineType::kNaturalCubic);
+    const gsl::Spline gsl_z(spline.knots(), profile.z, gsl::SplineType::kNaturalCubic);
     for (int i = 0; i <= 2000; ++i) {
       const double s = spline.length() * i / 2000.0;
       const ProfileVector p = spline.PositionAt(s);
@@ -898,6 +902,9 @@ TEST(ProfileKinks, DisabledGivesTheSplineThroughAllPoints) {
       ASSERT_EQ(p.z, z.Value(s)) << "s = " << s;
       const double speed = std::hypot(y.Derivative(s), z.Derivative(s));
       ASSERT_EQ(spline.TangentAt(s).y, y.Derivative(s) / speed) << "s = " << s;
+      ASSERT_NEAR(p.y, gsl_y.Value(s), 1e-12) << "s = " << s;
+      ASSERT_NEAR(p.z, gsl_z.Value(s), 1e-12) << "s = " << s;
+      ASSERT_NEAR(y.Derivative(s), gsl_y.Derivative(s), 1e-10) << "s = " << s;
     }
   }
   // The groove without kink detection overshoots at the corner (the old spline's loop).
