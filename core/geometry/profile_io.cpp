@@ -43,7 +43,10 @@ using profile_detail::At;
 using profile_detail::ParseNumber;
 
 std::string_view Trim(std::string_view text) {
-  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  // The "C" locale's white space, without a library call per character.
+  const auto is_space = [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+  };
   while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
   while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
   return text;
@@ -75,13 +78,15 @@ std::string Quote(std::string_view text) {
 void SplitInto(std::string_view text, std::string_view separators,
                std::vector<std::string_view>& tokens) {
   tokens.clear();
+  // One pass over the characters against a table of the separators (find_first_of searched
+  // the separators again at every character: a third of reading a profile's point lines).
+  bool separator[256] = {};
+  for (const char c : separators) separator[static_cast<unsigned char>(c)] = true;
   std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = text.find_first_of(separators, start);
-    const std::size_t stop = end == std::string_view::npos ? text.size() : end;
-    if (stop > start) tokens.push_back(text.substr(start, stop - start));
-    if (end == std::string_view::npos) break;
-    start = end + 1;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i < text.size() && !separator[static_cast<unsigned char>(text[i])]) continue;
+    if (i > start) tokens.push_back(text.substr(start, i - start));
+    start = i + 1;
   }
 }
 
