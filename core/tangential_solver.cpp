@@ -490,7 +490,24 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       }
       tractions_zero = false;
       since_refresh = 0;
+    } else {
+      // The last sweep's updates of the rows it had already swept (see below), in its order.
+      for (const auto& [j, begin, end] : ws.deferred_rows) {
+        for (int l = box_j0; l < j; ++l) {
+          const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
+          if (hi < lo) continue;
+          const int dj = l - j;
+          AddRowSlipTerms(xx_at(lo, dj), yy_at(lo, dj), xy_at(lo, dj),
+                          ws.deferred_offsets.data() + begin, ws.deferred_x.data() + begin,
+                          ws.deferred_y.data() + begin, end - begin, hi - lo + 1,
+                          ws.sx_box.data() + box_index(lo, l), ws.sy_box.data() + box_index(lo, l));
+        }
+      }
     }
+    ws.deferred_rows.clear();
+    ws.deferred_offsets.clear();
+    ws.deferred_x.clear();
+    ws.deferred_y.clear();
     ++since_refresh;
     const bool update_all = !mixing && direct_pays;
     double max_change = 0.0;
@@ -561,10 +578,21 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
       }
       const int updates = static_cast<int>(ws.offsets.size());
       if (updates > 0) {
+        // With every slip kept current, the rows already swept take the updates only when the
+        // next sweep starts (the same additions in the same order): a sweep that converges, or
+        // one followed by a fresh product, never needs them.
+        if (update_all && j > box_j0) {
+          const int begin = static_cast<int>(ws.deferred_offsets.size());
+          ws.deferred_offsets.insert(ws.deferred_offsets.end(), ws.offsets.begin(),
+                                     ws.offsets.end());
+          ws.deferred_x.insert(ws.deferred_x.end(), ws.amounts_x.begin(), ws.amounts_x.end());
+          ws.deferred_y.insert(ws.deferred_y.end(), ws.amounts_y.begin(), ws.amounts_y.end());
+          ws.deferred_rows.push_back({j, begin, begin + updates});
+        }
         const int last = update_all || mixing ? box_j1 : std::min(box_j1, j + kNearRows);
-        for (int l = update_all ? box_j0 : j + 1; l <= last; ++l) {
+        for (int l = j + 1; l <= last; ++l) {
           const int lo = row_lo[l - box_j0], hi = row_hi[l - box_j0];
-          if (hi < lo || l == j) continue;
+          if (hi < lo) continue;
           const int dj = l - j;
           AddRowSlipTerms(xx_at(lo, dj), yy_at(lo, dj), xy_at(lo, dj), ws.offsets.data(),
                           ws.amounts_x.data(), ws.amounts_y.data(), updates, hi - lo + 1,

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <array>
 #include <vector>
 
 #include "wrc/influence_operator.h"
@@ -96,6 +97,11 @@ struct TangentialWorkspace {
   std::vector<double> px_ext, py_ext, ux_ext, uy_ext, sx_box, sy_box;
   std::vector<int> offsets;                  ///< one row's updates: offsets of their kernels
   std::vector<double> amounts_x, amounts_y;  ///< and their traction changes / δq
+  /// A sweep's updates for the rows swept before theirs, applied when the next sweep starts:
+  /// the row, and the range of its updates in deferred_offsets/_x/_y.
+  std::vector<std::array<int, 3>> deferred_rows;
+  std::vector<int> deferred_offsets;
+  std::vector<double> deferred_x, deferred_y;
 };
 
 /// Solves the steady-rolling problem for identical (quasi-identical) materials; the normal
