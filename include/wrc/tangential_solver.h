@@ -4,9 +4,9 @@
 /// tractions p_t on the contact area with actual slip s = w + (u − u')/δq, |p_t| <= μ·p_n,
 /// s = 0 where |p_t| < μ·p_n (adhesion) and p_t = −μ·p_n·s/|s| where it slips.
 
+#include <array>
 #include <cstdint>
 #include <memory>
-#include <array>
 #include <vector>
 
 #include "wrc/influence_operator.h"
