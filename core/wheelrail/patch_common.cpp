@@ -257,6 +257,7 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
     cache.rolling_operator.reset();
   }
   const FftInfluenceOperator& op = *cache.normal_operator;
+  op.Prepare();  // every normal solve transforms: its plan and kernel count as influence time
   const std::vector<double> h_box = crop(h);
   // Warm start: the previous solution of this patch moved onto this box.
   NormalSolution ns;

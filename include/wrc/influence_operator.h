@@ -80,6 +80,10 @@ class FftInfluenceOperator {
   /// Component c must be even in x and y (kNN).
   std::optional<LocalInverseStencil> LocalInverse(InfluenceComponent c) const;
 
+  /// Makes the plan and the spectra now (otherwise the first product or workspace does; once
+  /// either way), e.g. so that their cost is timed apart from the solves.
+  void Prepare() const;
+
   /// The tangential block [ux; uy] = [[Axx, Axy]; [Axy, Ayy]]·[px; py] with two forward and two
   /// backward transforms instead of eight.
   void ApplyTangential(const double* px, const double* py, double* ux, double* uy,
@@ -88,8 +92,6 @@ class FftInfluenceOperator {
  private:
   static std::size_t Index(InfluenceComponent c) { return static_cast<std::size_t>(c); }
   std::optional<LocalInverseStencil> ComputeLocalInverse(InfluenceComponent c) const;
-  /// Makes the plan and the spectra, once.
-  void Prepare() const;
   void Forward(const double* in, std::complex<double>* spectrum, ConvolutionWorkspace& ws) const;
   void Backward(std::complex<double>* spectrum, double* out, ConvolutionWorkspace& ws) const;
 
