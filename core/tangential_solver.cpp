@@ -445,15 +445,16 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   //    (measured on heavy haul; 4 rows cost z1.194 a sweep). While mixing (slow contraction:
   //    partial slip, 0.6–0.7) all rows after it do: there the lag stalls the combination on
   //    tall contacts (Manchester at 300 kN: 24 sweeps became 323 with 8 rows).
-  // The first pays while its direct work, ~5 instructions per pair of contact elements, costs
-  // less than the product (~115 per transform point) and the near rows' pairs together: an
-  // instruction ratio of ~22. kDirectMargin = 16 is the best of 12, 16 and 22 over the
-  // Manchester and heavy-haul cases (the others lose 1–7 % on one or more; z1.087 is direct,
-  // z1.162 and the Manchester cases take the product).
+  // The first pays while its direct work, ~3.3 instructions per pair of contact elements,
+  // costs less than the product (~115 per transform point) and the near rows' pairs together:
+  // an instruction ratio of ~35, less in time because the large products wait on memory.
+  // kDirectMargin = 24 (session 6, timed): heavy_haul_z1.087 and z1.162 are direct (z1.162's
+  // tangential solve 8.2 → 5.6 ms against 16), z1.194 takes the product (64 would make it
+  // direct and cost it 4 ms), the Manchester cases are within ±0.2 ms of 16.
   // Mixing starts once a sweep contracts the change by less than kSlowContraction.
   constexpr int kRefreshSweeps = 8;
   constexpr double kSlowContraction = 0.3;
-  constexpr double kDirectMargin = 16.0;
+  constexpr double kDirectMargin = 24.0;
   constexpr int kNearRows = 8;
   const double n_contact = static_cast<double>(contact.size());
   double near_pairs = 0.0;  // pairs of contact-range elements in rows at most kNearRows apart
