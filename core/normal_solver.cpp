@@ -365,13 +365,13 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
     // elements, against the FFT's product over the padded grid, which also carries the
     // displacement off C; that is only read after the round (complementarity, the caller), so
     // the direct way refreshes it there with one product. With one refresh per round of ~5
-    // products the break-even is 0.8 of a product; the table's product costs run high on small
-    // grids (Manchester lost 2 % at 0.8), so direct only below 0.55 of one: on heavy_haul_z1.087
-    // (749 elements in a 26 400-point transform) 0.63 M instructions against 1.5 M, and on
-    // small patches. kDirectPairCost: instructions per pair of AddRunResponse (measured).
+    // products the break-even is 0.8 of a product: heavy_haul_z1.087 (749 elements in a
+    // 26 400-point transform, 0.63 M instructions against 1.5 M), z1.162 (normal solve −3.5 %
+    // in time) and small patches go direct, the Manchester patches of ~500 elements and
+    // z1.194 keep the FFT. kDirectPairCost: instructions per pair of AddRunResponse (measured).
     constexpr double kDirectPairCost = 1.1;
     const bool direct = kDirectPairCost * static_cast<double>(nc) * static_cast<double>(nc) <
-                        0.55 * op.ProductCost();
+                        0.8 * op.ProductCost();
     // w = A·d on C (d, w: values on C); with the FFT also the displacement += step·A·d.
     auto response = [&](const std::vector<double>& d) {
       if (direct) {
