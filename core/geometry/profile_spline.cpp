@@ -450,6 +450,29 @@ ProfileVector ProfileSpline::PositionAt(double s) const {
   return ProfileVector{part.y.Value(s), part.z.Value(s)};
 }
 
+std::vector<ProfileVector> ProfileSpline::PositionsAt(const std::vector<double>& s) const {
+  const Impl& impl = *impl_;
+  std::vector<ProfileVector> out(s.size());
+  std::size_t part = 0, interval = 0;  // hints, moved on as s ascends
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    double at = s[k];
+    impl.CheckRange(at);
+    if (k > 0 && !(s[k] >= s[k - 1])) {
+      throw std::invalid_argument("ProfileSpline::PositionsAt: arc lengths must ascend");
+    }
+    // As PartAt: the last part starting at or before `at`.
+    while (part + 1 < impl.parts.size() && impl.part_start[part + 1] <= at) {
+      ++part;
+      interval = 0;
+    }
+    const Part& p = impl.parts[part];
+    const std::vector<double>& knots = p.y.knots();
+    while (interval + 2 < knots.size() && knots[interval + 1] <= at) ++interval;
+    out[k] = ProfileVector{p.y.ValueOn(interval, at), p.z.ValueOn(interval, at)};
+  }
+  return out;
+}
+
 ProfileVector ProfileSpline::TangentAt(double s) const {
   impl_->CheckRange(s);
   const Part& part = impl_->PartAt(s);

@@ -293,6 +293,14 @@ double Spline::DerivativeOn(std::size_t interval, double x) const {
   return result;
 }
 
+double Spline::ValueOn(std::size_t interval, double x) const {
+  gsl_interp_accel accel{};
+  accel.cache = std::min(interval, x_.size() - 2);
+  double result = 0.0;
+  CheckStatus(gsl_spline_eval_e(state_->spline.get(), x, &accel, &result), "gsl_spline_eval_e");
+  return result;
+}
+
 void Spline::DerivativesOn(std::size_t interval, const double* x, std::size_t count,
                            double* out) const {
   if (type_ != SplineType::kCubic) {

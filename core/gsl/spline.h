@@ -50,6 +50,9 @@ class Spline {
   /// f'(x) for x in knot interval [knots()[interval], knots()[interval + 1]], without the
   /// search for the interval (x is not checked against it): for loops that walk the intervals.
   double DerivativeOn(std::size_t interval, double x) const;
+  /// f(x) as Value gives it, starting the search for the knot interval at `interval` (exact for
+  /// any hint; cheap when it is right, e.g. in loops over ascending x).
+  double ValueOn(std::size_t interval, double x) const;
   /// out[k] = f'(x[k]) for `count` points of one knot interval, as DerivativeOn gives them
   /// (at the interval's right end from its own piece, where DerivativeOn takes the next one: the
   /// same to round-off). A SplineType::kCubic spline takes its piece once for all of them (the

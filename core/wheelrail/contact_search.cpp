@@ -66,12 +66,14 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
   step = rail.length() / n;
   search.step = step;
   search.samples.resize(n + 1);
+  std::vector<double> s(n + 1);
+  for (int k = 0; k <= n; ++k) s[k] = std::min(k * step, rail.length());
+  const std::vector<Eigen::Vector2d> positions = rail.PositionsAt(s);
   for (int k = 0; k <= n; ++k) {
     LocusSample& sample = search.samples[k];
-    sample.s = std::min(k * step, rail.length());
-    const Eigen::Vector2d p = rail.PositionAt(sample.s);
-    sample.y = p(0);
-    sample.z = p(1);
+    sample.s = s[k];
+    sample.y = positions[k](0);
+    sample.z = positions[k](1);
     sample.gap = std::numeric_limits<double>::infinity();
   }
   // The inclination only where the wheel is located: it weighs interpenetration, and most

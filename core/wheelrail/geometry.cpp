@@ -40,11 +40,12 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
   // touches the track plane (z = 0) and sideways until its inner face, at gauge_height below
   // the track plane, lies at gauge_width/2.
   const int n = std::max(2, static_cast<int>(std::ceil(spline_->length() / kScanStep)));
-  std::vector<double> z_scan(n + 1);  // the rotated profile's z at the scan points
+  std::vector<double> s_scan(n + 1), z_scan(n + 1);  // the rotated profile's z at the scan
+  for (int k = 0; k <= n; ++k) s_scan[k] = spline_->length() * k / n;
+  const std::vector<ProfileVector> scan = spline_->PositionsAt(s_scan);
   double zmin = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= n; ++k) {
-    const double s = spline_->length() * k / n;
-    z_scan[k] = (R_TR_ * ToEigen(spline_->PositionAt(s)))(1);
+    z_scan[k] = (R_TR_ * ToEigen(scan[k]))(1);
     zmin = std::min(zmin, z_scan[k]);
   }
   const double z_shift = -zmin;
@@ -78,6 +79,13 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
 
 Eigen::Vector2d PlacedRail::PositionAt(double s) const {
   return p_TRo_T_ + R_TR_ * ToEigen(spline_->PositionAt(s));
+}
+
+std::vector<Eigen::Vector2d> PlacedRail::PositionsAt(const std::vector<double>& s) const {
+  const std::vector<ProfileVector> local = spline_->PositionsAt(s);
+  std::vector<Eigen::Vector2d> out(local.size());
+  for (std::size_t k = 0; k < local.size(); ++k) out[k] = p_TRo_T_ + R_TR_ * ToEigen(local[k]);
+  return out;
 }
 
 Eigen::Vector2d PlacedRail::TangentAt(double s) const {

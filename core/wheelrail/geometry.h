@@ -31,6 +31,8 @@ class PlacedRail {
 
   /// Point of the rail surface at arc length s, in the track frame (y, z).
   Eigen::Vector2d PositionAt(double s) const;
+  /// PositionAt for ascending arc lengths (ProfileSpline::PositionsAt).
+  std::vector<Eigen::Vector2d> PositionsAt(const std::vector<double>& s) const;
   /// Unit tangent at s in the track frame, in the direction of increasing s (towards +y).
   Eigen::Vector2d TangentAt(double s) const;
   /// Surface inclination in the track frame, rad: atan of dz/dy (negative on the gauge face of

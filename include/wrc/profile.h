@@ -274,6 +274,9 @@ class ProfileSpline {
   /// Position (y(s), z(s)). Here and in the four queries below, an s within 1e-12·length() of
   /// [0, length()] is clamped into it; one further outside (or NaN) throws std::out_of_range.
   ProfileVector PositionAt(double s) const;
+  /// PositionAt for each of `s`, which must ascend: the same values, found by walking the knot
+  /// intervals instead of searching them for each point (scans along the profile).
+  std::vector<ProfileVector> PositionsAt(const std::vector<double>& s) const;
   /// Unit tangent in the direction of increasing s. At a kink: the tangent leaving it.
   ProfileVector TangentAt(double s) const;
   /// Unit normal pointing out of the body's material (towards the other body): upwards (−z) on a

@@ -764,6 +764,27 @@ TEST(ProfileSplineGeometry, OverhangIsMultiValuedAndPicksTheFacingSurface) {
   EXPECT_LT(spline.YMin(), -11.5 + 1e-9);
 }
 
+// The scan along ascending arc lengths gives PositionAt's values to the last bit, across the
+// kinks of a groove rail (several parts) and at the knots themselves; descending input throws.
+TEST(ProfileSplineGeometry, PositionsAtEqualsPositionAt) {
+  for (const char* name : {"groove_r1010.prr", "MBench_UIC60_v3.prr"}) {
+    SCOPED_TRACE(name);
+    const ProfileSpline spline(ReadProfile(ProfilePath(name), ProfileKind::kRail));
+    std::vector<double> s;
+    for (int i = 0; i <= 3000; ++i) s.push_back(spline.length() * i / 3000.0);
+    s.insert(s.end(), spline.knots().begin(), spline.knots().end());
+    std::sort(s.begin(), s.end());
+    const std::vector<ProfileVector> scan = spline.PositionsAt(s);
+    ASSERT_EQ(scan.size(), s.size());
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      const ProfileVector p = spline.PositionAt(s[k]);
+      ASSERT_EQ(scan[k].y, p.y) << "s = " << s[k];
+      ASSERT_EQ(scan[k].z, p.z) << "s = " << s[k];
+    }
+    EXPECT_THROW(spline.PositionsAt({1.0, 0.5}), std::invalid_argument);
+  }
+}
+
 TEST(ProfileSplineGeometry, KnotsAreArcLengths) {
   // After refinement the spline's own arc length over each interval equals the knot spacing.
   const ProfileSpline spline(ReadProfile(ProfilePath("site_b_hr.prr"), ProfileKind::kRail));
