@@ -14,12 +14,12 @@ struct FreeDeleter {
   void operator()(void* p) const;
 };
 
-/// An fftw_malloc'ed array: SIMD-aligned, so that plans made on one buffer run on any other
-/// (fftw_execute_dft_r2c with new arrays requires the same alignment as at planning time).
 /// Tag for a buffer that its first use overwrites entirely (a transform's output, a row that is
 /// filled before each transform): it is not zero-filled first.
 struct Uninitialized {};
 
+/// An fftw_malloc'ed array: SIMD-aligned, so that plans made on one buffer run on any other
+/// (fftw_execute_dft_r2c with new arrays requires the same alignment as at planning time).
 template <typename T>
 class Buffer {
  public:
