@@ -286,21 +286,28 @@ TEST(NormalSolver, PreconditionedSolveMatchesPlainSolve) {
 // The deflated last phase (approach control) reaches the solution of the active-set iteration
 // alone, at the default tolerance within it of a 1e-13 solve, in fewer iterations. On a coarse
 // and a fine grid of the two bumps (about 250 and 1000 elements in contact).
+// A converged solve under approach control, with or without the deflated last phase.
+NormalSolution SolveAtApproach(const FftInfluenceOperator& op, const std::vector<double>& h,
+                               double approach, bool deflate, double tolerance,
+                               int* iterations = nullptr) {
+  NormalOptions options;
+  options.deflate = deflate;
+  options.tolerance = tolerance;
+  NormalWorkspace ws;
+  NormalSolution sol;
+  const NormalSummary s = SolveNormal(op, h, NormalLoad::Approach(approach), options, ws, sol);
+  EXPECT_EQ(s.status, SolverStatus::kConverged);
+  if (iterations) *iterations = s.iterations;
+  return sol;
+}
+
 TEST(NormalSolver, DeflatedSolveMatchesPlainSolve) {
   for (const double d : {0.1, 0.05}) {
     const Grid g = Grid::Covering(-3.0, 3.0, -3.0, 5.0, d, d);
     const FftInfluenceOperator op(g, Steel(), {InfluenceComponent::kNN});
     const std::vector<double> h = TwoBumps(g);
     auto solve = [&](bool deflate, double tolerance, int* iterations) {
-      NormalOptions options;
-      options.deflate = deflate;
-      options.tolerance = tolerance;
-      NormalWorkspace ws;
-      NormalSolution sol;
-      const NormalSummary s = SolveNormal(op, h, NormalLoad::Approach(0.012), options, ws, sol);
-      EXPECT_EQ(s.status, SolverStatus::kConverged);
-      if (iterations) *iterations = s.iterations;
-      return sol;
+      return SolveAtApproach(op, h, 0.012, deflate, tolerance, iterations);
     };
     const NormalSolution exact = solve(false, 1e-13, nullptr);
     int plain_iterations = 0, iterations = 0;
@@ -339,18 +346,8 @@ TEST(NormalSolver, DeflatedSolveOfASparseContactMatchesPlainSolve) {
                                   0.001 + (2.0 * x * x + (y - 10.0) * (y - 10.0)) / 300.0);
     }
   }
-  auto solve = [&](bool deflate, double tolerance) {
-    NormalOptions options;
-    options.deflate = deflate;
-    options.tolerance = tolerance;
-    NormalWorkspace ws;
-    NormalSolution sol;
-    const NormalSummary s = SolveNormal(op, h, NormalLoad::Approach(0.006), options, ws, sol);
-    EXPECT_EQ(s.status, SolverStatus::kConverged);
-    return sol;
-  };
-  const NormalSolution exact = solve(false, 1e-13);
-  const NormalSolution deflated = solve(true, 1e-8);
+  const NormalSolution exact = SolveAtApproach(op, h, 0.006, false, 1e-13);
+  const NormalSolution deflated = SolveAtApproach(op, h, 0.006, true, 1e-8);
   ASSERT_GT(exact.n_contact, 200);
   ASSERT_LT(exact.n_contact, 1000);  // 1.4·n² < 0.7 of an FFT product: the direct way
   EXPECT_EQ(deflated.n_contact, exact.n_contact);
