@@ -23,6 +23,7 @@
 #include "generator/interrupt.h"
 #include "generator/journal.h"
 #include "generator/progress.h"
+#include "generator/refine.h"
 #include "generator/sweep.h"
 #include "generator/table_data.h"
 #include "wrc/errors.h"
@@ -59,13 +60,29 @@ std::string RawDigest(const std::string& hex) {
 // What identifies the results of a run: the scene text, the profile bytes, the warm-start
 // setting and the segment length (where warm-start chains restart). Two runs with the same
 // fingerprint compute bit-identical points.
+// The axes' node values to the bit: a refined table's nodes are not those of the scene text.
+std::string AxesIdentity(const Scene& scene) {
+  std::string identity;
+  for (const SceneAxis& axis : scene.axes) {
+    identity += axis.name + ":";
+    for (const double value : axis.values) {
+      char hex[32];
+      std::snprintf(hex, sizeof hex, " %a", value);
+      identity += hex;
+    }
+    identity += "\n";
+  }
+  return identity;
+}
+
 std::string Fingerprint(const Scene& scene, const SegmentLayout& layout,
                         const std::string& rail_sha, const std::string& wheel_sha,
                         bool warm_start) {
-  const std::string identity = "wrc-journal 1\nwarm_start=" + std::to_string(warm_start) +
+  const std::string identity = "wrc-journal 2\nwarm_start=" + std::to_string(warm_start) +
                                "\nsegment_length=" + std::to_string(layout.segment_length()) +
                                "\nrail_sha256=" + rail_sha + "\nwheel_sha256=" + wheel_sha +
-                               "\nscene:\n" + scene.base.source_text;
+                               "\naxes:\n" + AxesIdentity(scene) + "scene:\n" +
+                               scene.base.source_text;
   return RawDigest(Sha256Hex(identity));
 }
 
@@ -194,7 +211,21 @@ struct RunContext {
   std::string fingerprint;
   std::string rail_sha, wheel_sha;
   gen::StopControl& stop;
+  const gen::GridHooks& hooks;
 };
+
+// Points an earlier refinement pass knows: stored and journaled as if solved in this run, so
+// that the journal alone describes the pass (a resume needs nothing else).
+void TakeOverKnownPoints(const gen::GridHooks& hooks, TableData& data, JournalWriter& journal) {
+  if (!hooks.known) return;
+  PointResult result;
+  for (std::uint64_t point = 0; point < data.status.size(); ++point) {
+    if (data.Has(point) || !hooks.known(point, &result)) continue;
+    data.Store(point, result);
+    journal.Append(gen::EncodeRecord(point, result));
+  }
+  journal.Sync();
+}
 
 // Waits (polling) for one message with the given tag from anyone; other tags are a protocol
 // error at this stage.
@@ -224,6 +255,7 @@ GenerateSummary RunRoot(const RunContext& run) {
   summary.threads = run.threads;
   summary.ranks = ranks;
   summary.journal = WithSuffix(run.options.output, ".journal");
+  summary.axes = scene.axes;
 
   // Set-up, its failure shared with every rank so that none waits forever.
   std::exception_ptr setup_failure;
@@ -290,6 +322,7 @@ GenerateSummary RunRoot(const RunContext& run) {
     cluster->CompleteSends();
   }
   if (setup_failure) std::rethrow_exception(setup_failure);
+  TakeOverKnownPoints(run.hooks, data, *journal);
   summary.reused = data.finished;
 
   const SegmentLayout& layout = run.layout;
@@ -350,13 +383,19 @@ GenerateSummary RunRoot(const RunContext& run) {
     summary.failures.emplace_back(point, message);
   }
 
-  if (data.finished == summary.points) {
+  if (data.finished == summary.points && !run.hooks.write_table) {
+    // A refinement pass: its journal is its record; the table is written after the last pass.
+    journal->Close();
+    summary.complete = true;
+    if (run.hooks.data_out != nullptr) *run.hooks.data_out = std::move(data);
+  } else if (data.finished == summary.points) {
     const std::filesystem::path temporary = WithSuffix(run.options.output, ".tmp");
     gen::TableProvenance provenance;
     provenance.rail_sha256 = run.rail_sha;
     provenance.wheel_sha256 = run.wheel_sha;
     provenance.created = gen::IsoTimestampUtc();
     provenance.z_warm_start = WarmStartDescription(layout, run.options.warm_start);
+    provenance.attributes = run.hooks.attributes;
     gen::WriteTableFile(temporary, scene, data, provenance);
     SyncFile(temporary);
     std::filesystem::rename(temporary, run.options.output);
@@ -445,33 +484,45 @@ bool GeneratorSupportsMpi() { return gen::ClusterSupportAvailable(); }
 
 const char* GeneratorVersion() { return WRC_VERSION; }
 
-GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options) {
-  if (options.output.empty()) throw InputError("wrc generate: no output file given");
-  std::unique_ptr<Cluster> cluster;
-  if (options.mpi == MpiMode::kAuto) cluster = gen::JoinClusterIfLaunched();
+namespace gen {
 
-  int threads = options.threads;
-  if (threads <= 0) {
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    threads = std::max(1, cores / (cluster ? cluster->local_size() : 1));
-  }
+int ThreadsFor(const GenerateOptions& options, const Cluster* cluster) {
+  if (options.threads > 0) return options.threads;
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(1, cores / (cluster ? cluster->local_size() : 1));
+}
 
+GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options, Cluster* cluster,
+                             const GridHooks& hooks) {
   std::optional<gen::InterruptHandlers> handlers;
   if (options.handle_signals) {
     gen::ClearInterrupt();
     handlers.emplace();
   }
-  gen::StopControl stop(options.cancel, options.max_points, options.handle_signals);
+  gen::StopControl stop(options.cancel, options.max_points,
+                        options.handle_signals || hooks.watch_signals);
 
   const std::string rail_sha = Sha256FileHex(scene.base.rail.path);
   const std::string wheel_sha = Sha256FileHex(scene.base.wheel.path);
   const SegmentLayout layout(scene.Shape(), std::max<std::size_t>(1, options.min_segments));
   const RunContext run{
-      scene,    options,   cluster.get(),
-      threads,  layout,    Fingerprint(scene, layout, rail_sha, wheel_sha, options.warm_start),
-      rail_sha, wheel_sha, stop};
+      scene,    options,
+      cluster,  ThreadsFor(options, cluster),
+      layout,   Fingerprint(scene, layout, rail_sha, wheel_sha, options.warm_start),
+      rail_sha, wheel_sha,
+      stop,     hooks};
   if (cluster && cluster->rank() != 0) return RunOtherRank(run);
   return RunRoot(run);
+}
+
+}  // namespace gen
+
+GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options) {
+  if (options.output.empty()) throw InputError("wrc generate: no output file given");
+  std::unique_ptr<Cluster> cluster;
+  if (options.mpi == MpiMode::kAuto) cluster = gen::JoinClusterIfLaunched();
+  if (scene.refine) return gen::RefineTable(scene, options, cluster.get());
+  return gen::GenerateGrid(scene, options, cluster.get(), gen::GridHooks{});
 }
 
 }  // namespace wrc

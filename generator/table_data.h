@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "wrc/generator.h"
@@ -35,6 +36,8 @@ struct TableProvenance {
   std::string created;  ///< ISO 8601, UTC.
   /// How prescribed-fz solves were started (the z_warm_start attribute).
   std::string z_warm_start;
+  /// Further root string attributes (a refined table's refine_* record), written in order.
+  std::vector<std::pair<std::string, std::string>> attributes;
 };
 
 /// Writes the table file exactly per SPEC §4.2 (plus /outputs 'order', /errors and the

@@ -79,6 +79,7 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
   file.WriteStringAttribute("wheel_profile_sha256", provenance.wheel_sha256);
   // Extension: how z was started at each prescribed-fz point (results differ in the last bits).
   file.WriteStringAttribute("z_warm_start", provenance.z_warm_start);
+  for (const auto& [name, value] : provenance.attributes) file.WriteStringAttribute(name, value);
 
   const h5::DatasetOptions storage = h5::CompressedChecked();
   std::vector<h5::Size> shape;

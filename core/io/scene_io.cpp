@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <stdexcept>
 #include <tuple>
 
@@ -270,6 +272,124 @@ std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& tabl
   return outputs;
 }
 
+bool IsForceOutput(std::string_view name) {
+  for (std::string_view force : {"fx", "fy", "fz", "fx_ws", "fy_ws", "fz_ws"}) {
+    if (name == force) return true;
+  }
+  return false;
+}
+
+std::int64_t ReadInteger(const Section& section, std::string_view key, std::int64_t fallback,
+                         std::int64_t min, std::int64_t max) {
+  const toml::node* node = section.Find(key);
+  if (node == nullptr) return fallback;
+  const auto* integer = node->as_integer();
+  if (integer == nullptr) section.Fail(key, "must be an integer");
+  const std::int64_t value = integer->get();
+  if (value < min || value > max) {
+    section.Fail(key, "must be between " + std::to_string(min) + " and " + std::to_string(max));
+  }
+  return value;
+}
+
+/// `{name = number, ...}` with names from `allowed`, each number positive.
+std::map<std::string, double, std::less<>> ReadPositiveByName(
+    const Section& section, std::string_view key, const std::vector<std::string_view>& allowed,
+    std::string_view what) {
+  const Section sub(section, key);
+  std::map<std::string, double, std::less<>> values;
+  if (!sub.exists()) return values;
+  for (const auto& [name, node] : *sub.table()) {
+    if (std::find(allowed.begin(), allowed.end(), name.str()) == allowed.end()) {
+      sub.Fail(name.str(),
+               "not " + std::string(what) + " of this scene; allowed: " + QuotedList(allowed));
+    }
+    const double value = ReadNumber(section.file(), node, sub.Path(name.str()));
+    if (!(value > 0.0)) sub.Fail(name.str(), "must be positive");
+    values[std::string(name.str())] = value;
+  }
+  return values;
+}
+
+const std::vector<std::string_view> kRefineKeys = {
+    "target", "absolute", "outputs", "max_points", "max_passes", "samples", "seed", "min_step"};
+
+/// `[table.refine]`, checked against the scene's axes and outputs.
+RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
+  for (const auto& [key, node] : *refine.table()) {
+    if (std::find(kRefineKeys.begin(), kRefineKeys.end(), key.str()) != kRefineKeys.end()) continue;
+    std::string problem = "unknown key";
+    const std::string suggestion = SuggestName(key.str(), kRefineKeys);
+    if (!suggestion.empty()) problem += " (did you mean " + refine.Path(suggestion) + "?)";
+    refine.Fail(key.str(), problem + "; allowed: " + QuotedList(kRefineKeys));
+  }
+  RefineSettings settings;
+  settings.load_fraction = refine.Number("target", settings.load_fraction);
+  // Below 1e-6 of the load the solver's own tolerances (1e-6 on fz) decide, not the table.
+  if (!(settings.load_fraction >= 1e-6 && settings.load_fraction < 1.0)) {
+    refine.Fail("target", "must be a fraction of the wheel load between 1e-6 and 1");
+  }
+  std::vector<std::string_view> outputs(scene.outputs.begin(), scene.outputs.end());
+  std::vector<std::string_view> non_force;
+  for (std::string_view name : outputs) {
+    if (!IsForceOutput(name)) non_force.push_back(name);
+  }
+  if (refine.Has("absolute")) {
+    settings.absolute = ReadPositiveByName(refine, "absolute", non_force, "a non-force output");
+  } else if (std::find(outputs.begin(), outputs.end(), "z") != outputs.end()) {
+    settings.absolute["z"] = 0.003;  // mm: a tenth of the 30 µm a simulator's z may be off
+  }
+  const toml::node* list = refine.Find("outputs");
+  if (list != nullptr) {
+    const toml::array* array = list->as_array();
+    if (array == nullptr || array->empty()) refine.Fail("outputs", "must list output names");
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const auto* text = array->get(i)->as_string();
+      const std::string path = refine.Path("outputs") + "[" + std::to_string(i) + "]";
+      if (text == nullptr) refine.file().Fail(array->get(i), path, "must be an output name");
+      const std::string& name = text->get();
+      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) {
+        refine.file().Fail(array->get(i), path, "not among table.outputs");
+      }
+      if (!IsForceOutput(name) && settings.absolute.count(name) == 0) {
+        refine.file().Fail(array->get(i), path,
+                           "has no target: give it one in " + refine.Path("absolute"));
+      }
+      settings.outputs.push_back(name);
+    }
+  } else {
+    for (const std::string& name : scene.outputs) {
+      if (IsForceOutput(name) || settings.absolute.count(name) != 0) {
+        settings.outputs.push_back(name);
+      }
+    }
+  }
+  if (settings.outputs.empty()) {
+    refine.Fail("outputs", "no output to refine on: store a force or give an absolute target");
+  }
+  const bool force_targets =
+      std::any_of(settings.outputs.begin(), settings.outputs.end(),
+                  [](const std::string& name) { return IsForceOutput(name); });
+  if (force_targets && !scene.base.state.force_prescribed() &&
+      std::find(outputs.begin(), outputs.end(), "fz") == outputs.end()) {
+    refine.Fail("target",
+                "the force target is relative to the wheel load, which a prescribed-z scene "
+                "only knows when fz is among table.outputs");
+  }
+  const std::int64_t points = static_cast<std::int64_t>(scene.PointCount());
+  settings.max_points = static_cast<std::size_t>(
+      ReadInteger(refine, "max_points", std::max<std::int64_t>(points, 1'000'000), points,
+                  static_cast<std::int64_t>(kMaxPointCount)));
+  settings.max_passes = static_cast<int>(ReadInteger(refine, "max_passes", 12, 0, 100));
+  settings.samples = static_cast<int>(ReadInteger(refine, "samples", 24, 1, 10'000));
+  settings.seed = static_cast<std::uint64_t>(
+      ReadInteger(refine, "seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+  std::vector<std::string_view> axis_names;
+  for (const SceneAxis& axis : scene.axes) axis_names.push_back(axis.name);
+  settings.min_step = ReadPositiveByName(refine, "min_step", axis_names, "an axis");
+  return settings;
+}
+
 void ApplyAxisValue(Case& point, std::string_view axis, double value) {
   WheelsetState& state = point.state;
   if (axis == "y") {
@@ -318,7 +438,7 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
 
   const std::vector<std::string> axis_names = ReadAxisNames(file, table);
   // Unknown keys in [table]: typos of axis names or of outputs.
-  std::vector<std::string_view> table_keys = {"axes", "outputs"};
+  std::vector<std::string_view> table_keys = {"axes", "outputs", "refine"};
   for (std::string_view name : kSceneAxisNames) table_keys.push_back(name);
   for (const auto& [key, node] : *root.get("table")->as_table()) {
     const std::string_view name = key.str();
@@ -327,7 +447,7 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
     const std::string suggestion = SuggestName(name, table_keys);
     if (!suggestion.empty()) problem += " (did you mean table." + suggestion + "?)";
     file.Fail(&node, "table." + std::string(name),
-              problem + "; [table] has axes, outputs and one range per axis");
+              problem + "; [table] has axes, outputs, refine and one range per axis");
   }
   CheckUnlistedRanges(table, axis_names);
 
@@ -377,6 +497,8 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
     ApplyAxisValue(scene.base, axis.name, axis.values.front());
 
   scene.outputs = ReadOutputs(file, table, scene.base.state.force_prescribed());
+  const Section refine(table, "refine");
+  if (refine.exists()) scene.refine = ReadRefineSettings(refine, scene);
   return scene;
 }
 

@@ -137,6 +137,14 @@ Section::Section(const SourceFile& file, const toml::table& root, std::string na
   }
 }
 
+Section::Section(const Section& parent, std::string_view key)
+    : file_(parent.file_), name_(parent.name_ + "." + std::string(key)) {
+  if (const toml::node* node = parent.Find(key)) {
+    table_ = node->as_table();
+    if (table_ == nullptr) file_.Fail(node, name_, "must be a table [" + name_ + "]");
+  }
+}
+
 toml::source_position Section::position() const {
   return table_ != nullptr ? table_->source().begin : toml::source_position{0, 0};
 }

@@ -68,6 +68,8 @@ double ReadNumber(const SourceFile& file, const toml::node& node, std::string_vi
 class Section {
  public:
   Section(const SourceFile& file, const toml::table& root, std::string name);
+  /// The sub-table `key` of another section, named "parent.key" in messages.
+  Section(const Section& parent, std::string_view key);
 
   const SourceFile& file() const { return file_; }
   const std::string& name() const { return name_; }
@@ -116,6 +118,10 @@ class Section {
   const SourceFile& file_;
   std::string name_;
   const toml::table* table_ = nullptr;
+
+ public:
+  /// The section's table (null when absent), for iterating over its keys.
+  const toml::table* table() const { return table_; }
 };
 
 }  // namespace wrc::io

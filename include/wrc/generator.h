@@ -140,7 +140,9 @@ struct GenerateSummary {
   bool is_root = true;
   /// Up to 10 failed points (flat row-major index and message), in index order.
   std::vector<std::pair<std::uint64_t, std::string>> failures;
-  std::filesystem::path journal;  ///< The journal file used.
+  std::filesystem::path journal;  ///< The journal file used (a refinement: its directory).
+  /// The table's axes: the scene's, or the nodes a refinement chose.
+  std::vector<SceneAxis> axes;
 };
 
 /// Thrown by GenerateTable() on MPI ranks other than 0 when rank 0 refused to start the run;

@@ -13,7 +13,10 @@
 ///  - `[v0, v1, ...]`: explicit values, strictly ascending.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +31,32 @@ struct SceneAxis {
   std::vector<double> values;
 };
 
+/// `[table.refine]`: the generator places the nodes of every axis itself until the
+/// interpolation error meets a target (docs/tables.md). The axis values of `[table]` are then
+/// the starting nodes: they are kept, and nodes are added between them where the error is.
+struct RefineSettings {
+  /// Target for the force outputs (fx fy fz fx_ws fy_ws fz_ws), as a fraction of the local
+  /// wheel load (the prescribed fz, or the solved vertical force where z is prescribed).
+  double load_fraction = 0.005;
+  /// Absolute targets of other outputs, in the output's unit (e.g. z in mm). By default z
+  /// (when stored) gets 0.003 mm.
+  std::map<std::string, double, std::less<>> absolute;
+  /// The outputs whose error drives the refinement, in scene output order: the force outputs
+  /// among the scene's outputs and those with an absolute target.
+  std::vector<std::string> outputs;
+  /// Budget: the table never grows beyond this many grid points.
+  std::size_t max_points = 1'000'000;
+  /// Budget: at most this many refinement passes after the starting grid.
+  int max_passes = 12;
+  /// Exact solves per axis interval and pass that measure its interpolation error.
+  int samples = 24;
+  /// Seed of the sample draw: a refinement is repeatable to the bit.
+  std::uint64_t seed = 1;
+  /// Smallest interval per axis name: an interval shorter than twice this is never split.
+  /// Axes not listed get (range) / 512.
+  std::map<std::string, double, std::less<>> min_step;
+};
+
 /// A parsed and validated scene.
 struct Scene {
   /// The case with every axis quantity set to the axis' first value, so that it is complete.
@@ -35,6 +64,8 @@ struct Scene {
   Case base;
   std::vector<SceneAxis> axes;       ///< In dimension order (`table.axes`).
   std::vector<std::string> outputs;  ///< Output names (SPEC §4.2), in file order.
+  /// Present when the scene asks the generator to place the nodes (`[table.refine]`).
+  std::optional<RefineSettings> refine;
 
   /// Number of grid points: the product of the axis lengths.
   std::size_t PointCount() const;

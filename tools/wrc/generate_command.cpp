@@ -28,8 +28,9 @@ std::string ShellWord(const std::string& word) {
 }
 
 // "(y = 200, yaw = 0.01)" for a flat point index.
-std::string DescribePoint(const Scene& scene, std::uint64_t point) {
-  const std::vector<std::size_t> shape = scene.Shape();
+std::string DescribePoint(const std::vector<SceneAxis>& axes, std::uint64_t point) {
+  std::vector<std::size_t> shape;
+  for (const SceneAxis& axis : axes) shape.push_back(axis.values.size());
   std::vector<std::size_t> indices(shape.size());
   for (std::size_t a = shape.size(); a-- > 0;) {
     indices[a] = static_cast<std::size_t>(point % shape[a]);
@@ -38,13 +39,13 @@ std::string DescribePoint(const Scene& scene, std::uint64_t point) {
   std::ostringstream text;
   text << '(';
   for (std::size_t a = 0; a < shape.size(); ++a) {
-    text << (a ? ", " : "") << scene.axes[a].name << " = " << scene.axes[a].values[indices[a]];
+    text << (a ? ", " : "") << axes[a].name << " = " << axes[a].values[indices[a]];
   }
   text << ')';
   return text.str();
 }
 
-void PrintSummary(const Scene& scene, const std::string& output, const GenerateSummary& s) {
+void PrintSummary(const std::string& output, const GenerateSummary& s) {
   const auto& counts = s.status_counts;
   std::cout << "wrote " << output << ": " << s.points << " points (" << counts[0] << " ok, "
             << counts[1] << " no contact, " << counts[2] << " not converged, " << counts[3]
@@ -63,7 +64,7 @@ void PrintSummary(const Scene& scene, const std::string& output, const GenerateS
     std::cerr << "wrc generate: " << counts[2] + counts[3]
               << " points failed (status 2/3, outputs NaN); the first:\n";
     for (const auto& [point, message] : s.failures) {
-      std::cerr << "  point " << point << " " << DescribePoint(scene, point) << ": " << message
+      std::cerr << "  point " << point << " " << DescribePoint(s.axes, point) << ": " << message
                 << '\n';
     }
     std::cerr << "  (all of them: wrc info " << ShellWord(output) << ")\n";
@@ -108,15 +109,15 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
         return;
       }
       if (summary.complete) {
-        PrintSummary(scene, *output, summary);
+        PrintSummary(*output, summary);
         *exit_code = kExitOk;
         return;
       }
       const std::size_t saved = summary.reused + summary.computed;
-      std::cerr << "wrc generate: interrupted; " << saved << " of " << summary.points
-                << " points are saved in " << summary.journal.string()
-                << ".\nContinue with:\n  wrc generate " << ShellWord(*scene_path) << " -o "
-                << ShellWord(*output);
+      std::cerr << "wrc generate: interrupted; " << saved << " of " << summary.points << " points"
+                << (scene.refine ? " of this refinement pass" : "") << " are saved in "
+                << summary.journal.string() << ".\nContinue with:\n  wrc generate "
+                << ShellWord(*scene_path) << " -o " << ShellWord(*output);
       if (*threads > 0) std::cerr << " --threads " << *threads;
       if (*cold_start) std::cerr << " --no-warm-start";
       std::cerr << " --resume\n";

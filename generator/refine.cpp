@@ -1,0 +1,1001 @@
+// RefineTable(): error-driven node placement over repeated grid runs (see refine.h).
+//
+// Files of a refinement of TABLE.h5, in TABLE.h5.refine/ (removed when the table is written):
+//   passes            the axes of every pass decided so far (hex floats, exact), rewritten
+//                     atomically after each decision: a resume continues at the last one;
+//   pass<P>.h5.journal  the grid journal of pass P (kept until pass P + 1 is complete);
+//   samples<P>.journal  the midpoint solves of pass P (same record format).
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <unordered_map>
+
+#include "generator/interrupt.h"
+#include "generator/journal.h"
+#include "generator/progress.h"
+#include "generator/refine.h"
+#include "generator/sweep.h"
+#include "wrc/errors.h"
+
+namespace wrc::gen {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// An axis without a min_step gets range / 512: nine halvings of the range, finer than any
+// kink of the contact forces needs (0.04 mm over a 20 mm lateral range) and coarse enough that
+// a true discontinuity cannot take the whole point budget.
+constexpr double kDefaultMinStepFraction = 1.0 / 512.0;
+// Points drawn over the whole state space after the last pass to estimate the final error.
+constexpr int kCheckPoints = 400;
+// Messages to other ranks between passes.
+constexpr int kTagAxes = 20;
+enum class PassKind : char { kGrid = 'g', kFinal = 'f', kStop = 's' };
+
+using Axes = std::vector<SceneAxis>;
+
+// ---- small helpers --------------------------------------------------------------------------
+
+std::string HexDouble(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%a", value);
+  return text;
+}
+
+fs::path WorkDirectory(const fs::path& output) { return fs::path(output.string() + ".refine"); }
+fs::path PassOutput(const fs::path& work, int pass) {
+  return work / ("pass" + std::to_string(pass) + ".h5");
+}
+fs::path PassJournal(const fs::path& work, int pass) {
+  return fs::path(PassOutput(work, pass).string() + ".journal");
+}
+fs::path SamplesJournal(const fs::path& work, int pass) {
+  return work / ("samples" + std::to_string(pass) + ".journal");
+}
+
+std::string RawSha(const std::string& text) {
+  const std::string hex = Sha256Hex(text);
+  std::string raw;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) {
+    raw += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
+  }
+  return raw;
+}
+
+std::size_t PointCount(const Axes& axes) {
+  std::size_t n = 1;
+  for (const SceneAxis& axis : axes) n *= axis.values.size();
+  return n;
+}
+
+Scene WithAxes(const Scene& scene, const Axes& axes) {
+  Scene copy = scene;
+  copy.axes = axes;
+  copy.refine.reset();
+  return copy;
+}
+
+// SplitMix64: a portable, seedable stream, so that the same seed draws the same samples on
+// every platform (std::uniform_real_distribution is implementation-defined).
+class SplitMix {
+ public:
+  explicit SplitMix(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t Next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double Unit() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::uint64_t state_;
+};
+
+std::uint64_t Mix(std::uint64_t a, std::uint64_t b) {
+  SplitMix mix(a * 0x100000001B3ull ^ b);
+  return mix.Next();
+}
+
+std::size_t NearestNode(const std::vector<double>& nodes, double x) {
+  const auto upper = std::lower_bound(nodes.begin(), nodes.end(), x);
+  if (upper == nodes.begin()) return 0;
+  if (upper == nodes.end()) return nodes.size() - 1;
+  const std::size_t i = static_cast<std::size_t>(upper - nodes.begin());
+  return (x - nodes[i - 1] <= nodes[i] - x) ? i - 1 : i;
+}
+
+std::vector<std::size_t> Strides(const Axes& axes) {
+  std::vector<std::size_t> stride(axes.size());
+  std::size_t s = 1;
+  for (std::size_t a = axes.size(); a-- > 0;) {
+    stride[a] = s;
+    s *= axes[a].values.size();
+  }
+  return stride;
+}
+
+PointResult ResultAt(const TableData& data, std::uint64_t point) {
+  PointResult r;
+  r.status = static_cast<PointStatus>(data.status[point]);
+  r.solve_time_s = data.solve_time_s[point];
+  r.z = data.z[point];
+  r.values.resize(data.values.size());
+  for (std::size_t k = 0; k < data.values.size(); ++k) r.values[k] = data.values[k][point];
+  const auto message = data.messages.find(point);
+  if (message != data.messages.end()) r.message = message->second;
+  return r;
+}
+
+std::string PointKey(const std::vector<double>& point) {
+  return std::string(reinterpret_cast<const char*>(point.data()), point.size() * sizeof(double));
+}
+
+// ---- the passes file ------------------------------------------------------------------------
+
+std::string SceneIdentity(const Scene& scene) {
+  return Sha256Hex(scene.base.source_text + "\n" + Sha256FileHex(scene.base.rail.path) + "\n" +
+                   Sha256FileHex(scene.base.wheel.path));
+}
+
+void WritePasses(const fs::path& work, const std::string& identity,
+                 const std::vector<Axes>& passes) {
+  std::ostringstream text;
+  text << "wrc-refine 1 " << identity << "\n";
+  for (std::size_t p = 0; p < passes.size(); ++p) {
+    text << "pass " << p << "\n";
+    for (const SceneAxis& axis : passes[p]) {
+      text << axis.name << " " << axis.values.size();
+      for (const double v : axis.values) text << " " << HexDouble(v);
+      text << "\n";
+    }
+  }
+  text << "end\n";
+  const fs::path temporary = work / "passes.tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text.str();
+    out.flush();
+    if (!out) throw InputError(temporary.string() + ": cannot write the refinement state");
+  }
+  fs::rename(temporary, work / "passes");
+}
+
+std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity,
+                             const Scene& scene) {
+  const fs::path path = work / "passes";
+  std::ifstream in(path);
+  const auto damaged = [&](const std::string& why) {
+    return InputError(path.string() + ": " + why + "; delete " + work.string() +
+                      " to start the refinement over");
+  };
+  std::string magic, version, stored_identity;
+  if (!(in >> magic >> version >> stored_identity) || magic != "wrc-refine" || version != "1") {
+    throw damaged("not a refinement state file");
+  }
+  if (stored_identity != identity) {
+    throw damaged("it belongs to another scene or other profile files");
+  }
+  std::vector<Axes> passes;
+  std::string word;
+  while (in >> word) {
+    if (word == "end") return passes;
+    std::size_t index = 0;
+    if (word != "pass" || !(in >> index) || index != passes.size()) throw damaged("damaged");
+    Axes axes;
+    for (const SceneAxis& expected : scene.axes) {
+      std::string name;
+      std::size_t count = 0;
+      if (!(in >> name >> count) || name != expected.name || count == 0) throw damaged("damaged");
+      SceneAxis axis{name, {}};
+      for (std::size_t i = 0; i < count; ++i) {
+        std::string hex;
+        if (!(in >> hex)) throw damaged("damaged");
+        axis.values.push_back(std::strtod(hex.c_str(), nullptr));
+      }
+      axes.push_back(std::move(axis));
+    }
+    passes.push_back(std::move(axes));
+  }
+  throw damaged("truncated");
+}
+
+// ---- samples --------------------------------------------------------------------------------
+
+// An exact solve at the midpoint of interval `interval` of axis `axis`, the other coordinates
+// at the nodes `nodes` (nodes[axis] is the interval's lower node).
+struct Sample {
+  std::size_t axis = 0, interval = 0;
+  std::vector<std::size_t> nodes;
+  std::vector<double> point;
+};
+
+double MinStep(const RefineSettings& settings, const SceneAxis& axis) {
+  const auto it = settings.min_step.find(axis.name);
+  if (it != settings.min_step.end()) return it->second;
+  return (axis.values.back() - axis.values.front()) * kDefaultMinStepFraction;
+}
+
+bool Splittable(const RefineSettings& settings, const SceneAxis& axis, std::size_t interval) {
+  const double width = axis.values[interval + 1] - axis.values[interval];
+  return width >= 2.0 * MinStep(settings, axis);
+}
+
+std::vector<Sample> DrawSamples(const Axes& axes, const RefineSettings& settings, int pass) {
+  std::vector<Sample> samples;
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    const std::vector<double>& nodes = axes[k].values;
+    for (std::size_t j = 0; j + 1 < nodes.size(); ++j) {
+      if (!Splittable(settings, axes[k], j)) continue;
+      SplitMix rng(Mix(Mix(settings.seed, static_cast<std::uint64_t>(pass)), k * 1'000'003 + j));
+      for (int s = 0; s < settings.samples; ++s) {
+        Sample sample;
+        sample.axis = k;
+        sample.interval = j;
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+          const std::vector<double>& v = axes[a].values;
+          if (a == k) {
+            sample.nodes.push_back(j);
+            sample.point.push_back(0.5 * (v[j] + v[j + 1]));
+          } else {
+            const double x = v.front() + rng.Unit() * (v.back() - v.front());
+            sample.nodes.push_back(NearestNode(v, x));
+            sample.point.push_back(v[sample.nodes.back()]);
+          }
+        }
+        samples.push_back(std::move(sample));
+      }
+    }
+  }
+  return samples;
+}
+
+struct SampleRun {
+  std::vector<PointResult> results;
+  std::size_t computed = 0;
+  bool complete = false;
+};
+
+// Solves points on this process's threads, journaled in `journal_path` so that an interrupted
+// run keeps them. z_guess[i] warm-starts point i.
+SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>& points,
+                      const std::vector<double>& z_guess, const fs::path& journal_path,
+                      const std::string& identity, int threads, StopControl& stop,
+                      ProgressMode progress_mode) {
+  std::string fingerprint_text = identity;
+  for (const auto& point : points) fingerprint_text += PointKey(point);
+  const JournalHeader header{RawSha(fingerprint_text), points.size(),
+                             static_cast<std::uint32_t>(scene.outputs.size())};
+  SampleRun run;
+  run.results.resize(points.size());
+  std::vector<char> done(points.size(), 0);
+  std::size_t reused = 0;
+  std::optional<JournalWriter> journal;
+  if (fs::exists(journal_path)) {
+    JournalContents contents;
+    journal.emplace(JournalWriter::Continue(journal_path, header, &contents));
+    for (JournalRecord& record : contents.records) {
+      if (record.index >= points.size() || done[record.index]) continue;
+      run.results[record.index] = std::move(record.result);
+      done[record.index] = 1;
+      ++reused;
+    }
+  } else {
+    journal.emplace(JournalWriter::Create(journal_path, header));
+  }
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0}, computed{0};
+  const int workers = std::max(1, threads);
+  std::atomic<int> running{workers};
+  const auto work = [&]() {
+    for (std::size_t i = next++; i < points.size(); i = next++) {
+      if (done[i]) continue;
+      if (!stop.ClaimPoint()) break;
+      Scene at = scene;
+      for (std::size_t a = 0; a < at.axes.size(); ++a) at.axes[a].values = {points[i][a]};
+      PointResult result =
+          SolveScenePoint(at, std::vector<std::size_t>(at.axes.size(), 0), z_guess[i]);
+      const std::string record = EncodeRecord(i, result);
+      std::lock_guard<std::mutex> lock(mutex);
+      journal->Append(record);
+      run.results[i] = std::move(result);
+      done[i] = 1;
+      computed.fetch_add(1);
+    }
+    running.fetch_sub(1);
+  };
+  ProgressReporter progress(progress_mode, points.size(), reused);
+  std::vector<std::thread> pool;
+  for (int t = 0; t < workers; ++t) pool.emplace_back(work);
+  auto last_sync = std::chrono::steady_clock::now();
+  while (running.load() > 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    progress.Update(computed.load());
+    if (std::chrono::steady_clock::now() - last_sync > std::chrono::seconds(1)) {
+      std::lock_guard<std::mutex> lock(mutex);  // appends and syncs do not interleave
+      journal->Sync();
+      last_sync = std::chrono::steady_clock::now();
+    }
+  }
+  for (std::thread& t : pool) t.join();
+  journal->Sync();
+  journal->Close();
+  progress.Finish(computed.load());
+  run.computed = computed.load();
+  run.complete = std::all_of(done.begin(), done.end(), [](char d) { return d != 0; });
+  return run;
+}
+
+// ---- errors ---------------------------------------------------------------------------------
+
+bool IsForce(const std::string& name) {
+  return name == "fx" || name == "fy" || name == "fz" || name == "fx_ws" || name == "fy_ws" ||
+         name == "fz_ws";
+}
+
+// How the refined outputs' errors are measured: per output its index in the scene's outputs
+// and either an absolute tolerance or the fraction of the local load.
+struct ErrorModel {
+  std::vector<std::size_t> outputs;
+  std::vector<double> absolute;  ///< NaN for force outputs (relative to the load).
+  double load_fraction = 0.0;
+  int fz_axis = -1;        ///< Axis holding the prescribed load, or -1.
+  double fz_state = kNaN;  ///< The scene's prescribed load when fz is not an axis.
+  int fz_output = -1;      ///< Index of output fz, or -1.
+};
+
+ErrorModel MakeErrorModel(const Scene& scene, const RefineSettings& settings) {
+  ErrorModel model;
+  model.load_fraction = settings.load_fraction;
+  for (const std::string& name : settings.outputs) {
+    const auto it = std::find(scene.outputs.begin(), scene.outputs.end(), name);
+    model.outputs.push_back(static_cast<std::size_t>(it - scene.outputs.begin()));
+    const auto abs = settings.absolute.find(name);
+    model.absolute.push_back(IsForce(name) ? kNaN : abs->second);
+  }
+  for (std::size_t a = 0; a < scene.axes.size(); ++a) {
+    if (scene.axes[a].name == "fz") model.fz_axis = static_cast<int>(a);
+  }
+  if (scene.base.state.fz) model.fz_state = *scene.base.state.fz;
+  const auto fz = std::find(scene.outputs.begin(), scene.outputs.end(), "fz");
+  if (fz != scene.outputs.end()) model.fz_output = static_cast<int>(fz - scene.outputs.begin());
+  return model;
+}
+
+// The local wheel load at `point` from the prescribed fz or, where z is prescribed, the
+// largest solved vertical force among the given results.
+double LocalLoad(const ErrorModel& model, const std::vector<double>& point,
+                 std::initializer_list<const std::vector<double>*> values) {
+  if (model.fz_axis >= 0) return point[static_cast<std::size_t>(model.fz_axis)];
+  if (std::isfinite(model.fz_state)) return model.fz_state;
+  double load = 0.0;
+  for (const std::vector<double>* v : values) {
+    const double fz = (*v)[static_cast<std::size_t>(model.fz_output)];
+    if (std::isfinite(fz)) load = std::max(load, std::fabs(fz));
+  }
+  return load;
+}
+
+bool Usable(PointStatus status) {
+  return status == PointStatus::kOk || status == PointStatus::kNoContact;
+}
+
+// Largest error of `estimate` against `exact` over the refined outputs, in units of their
+// targets (1 = exactly on target). NaN when nothing could be compared.
+double NormalisedError(const ErrorModel& model, double load, const std::vector<double>& exact,
+                       const std::vector<double>& estimate) {
+  double worst = kNaN;
+  for (std::size_t i = 0; i < model.outputs.size(); ++i) {
+    const std::size_t k = model.outputs[i];
+    if (!std::isfinite(exact[k]) || !std::isfinite(estimate[k])) continue;
+    const double tolerance =
+        std::isnan(model.absolute[i]) ? model.load_fraction * load : model.absolute[i];
+    if (!(tolerance > 0.0)) continue;  // no load (no contact anywhere): forces are exactly 0
+    const double e = std::fabs(exact[k] - estimate[k]) / tolerance;
+    worst = std::isnan(worst) ? e : std::max(worst, e);
+  }
+  return worst;
+}
+
+struct IntervalScore {
+  double max_error = 0.0;  ///< In units of the target.
+  int samples = 0;
+};
+
+// Midpoint errors of the linear interpolant (the mean of the interval's end values), per
+// axis and interval.
+std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const TableData& data,
+                                                       const std::vector<Sample>& samples,
+                                                       const std::vector<PointResult>& results,
+                                                       const ErrorModel& model) {
+  std::vector<std::vector<IntervalScore>> scores(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    scores[a].resize(axes[a].values.size() > 1 ? axes[a].values.size() - 1 : 0);
+  }
+  const std::vector<std::size_t> stride = Strides(axes);
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    const Sample& sample = samples[s];
+    std::uint64_t lower = 0;
+    for (std::size_t a = 0; a < axes.size(); ++a) lower += sample.nodes[a] * stride[a];
+    const std::uint64_t upper = lower + stride[sample.axis];
+    const PointResult& mid = results[s];
+    if (!Usable(mid.status) || data.status[lower] > 1 || data.status[upper] > 1) continue;
+    const PointResult left = ResultAt(data, lower), right = ResultAt(data, upper);
+    std::vector<double> estimate(left.values.size());
+    for (std::size_t k = 0; k < estimate.size(); ++k) {
+      estimate[k] = 0.5 * (left.values[k] + right.values[k]);
+    }
+    const double load = LocalLoad(model, sample.point, {&left.values, &right.values, &mid.values});
+    const double e = NormalisedError(model, load, mid.values, estimate);
+    if (std::isnan(e)) continue;
+    IntervalScore& score = scores[sample.axis][sample.interval];
+    score.max_error = std::max(score.max_error, e);
+    ++score.samples;
+  }
+  return scores;
+}
+
+struct Split {
+  std::size_t axis, interval;
+  double priority;
+};
+
+// Splits the intervals above target, the largest error times relative width first (the
+// interpolation error they leave in the state space), as far as the point budget allows.
+Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScore>>& scores,
+                    std::size_t max_points, std::size_t* refused) {
+  std::vector<Split> candidates;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    const double range = v.back() - v.front();
+    for (std::size_t j = 0; j < scores[a].size(); ++j) {
+      if (scores[a][j].max_error <= 1.0) continue;
+      candidates.push_back({a, j, scores[a][j].max_error * (v[j + 1] - v[j]) / range});
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Split& x, const Split& y) { return x.priority > y.priority; });
+  std::vector<std::size_t> size(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) size[a] = axes[a].values.size();
+  std::vector<std::vector<char>> chosen(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) chosen[a].assign(scores[a].size(), 0);
+  *refused = 0;
+  for (const Split& split : candidates) {
+    ++size[split.axis];
+    double points = 1.0;
+    for (const std::size_t n : size) points *= static_cast<double>(n);
+    if (points > static_cast<double>(max_points)) {
+      --size[split.axis];
+      ++*refused;
+      continue;
+    }
+    chosen[split.axis][split.interval] = 1;
+  }
+  Axes next = axes;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    std::vector<double> values;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      values.push_back(v[i]);
+      if (i + 1 < v.size() && chosen[a][i]) values.push_back(0.5 * (v[i] + v[i + 1]));
+    }
+    next[a].values = std::move(values);
+  }
+  return next;
+}
+
+// ---- final estimate -------------------------------------------------------------------------
+
+struct ErrorEstimate {
+  int compared = 0;
+  double p50 = kNaN, p95 = kNaN, max = kNaN;  ///< In units of the target.
+};
+
+ErrorEstimate Summarise(std::vector<double> errors) {
+  ErrorEstimate estimate;
+  estimate.compared = static_cast<int>(errors.size());
+  if (errors.empty()) return estimate;
+  std::sort(errors.begin(), errors.end());
+  const auto at = [&](double q) {
+    return errors[std::min(errors.size() - 1, static_cast<std::size_t>(q * errors.size()))];
+  };
+  estimate.p50 = at(0.5);
+  estimate.p95 = at(0.95);
+  estimate.max = errors.back();
+  return estimate;
+}
+
+// ---- the pass loop --------------------------------------------------------------------------
+
+std::string EncodeAxes(PassKind kind, const Axes& axes) {
+  std::string bytes(1, static_cast<char>(kind));
+  for (const SceneAxis& axis : axes) {
+    const std::uint64_t n = axis.values.size();
+    bytes.append(reinterpret_cast<const char*>(&n), sizeof n);
+    bytes.append(reinterpret_cast<const char*>(axis.values.data()), n * sizeof(double));
+  }
+  return bytes;
+}
+
+PassKind DecodeAxes(const std::string& bytes, const Scene& scene, Axes* axes) {
+  if (bytes.empty()) throw std::runtime_error("MPI protocol: empty refinement message");
+  const auto kind = static_cast<PassKind>(bytes[0]);
+  if (kind == PassKind::kStop) return kind;
+  *axes = scene.axes;
+  std::size_t offset = 1;
+  for (SceneAxis& axis : *axes) {
+    std::uint64_t n = 0;
+    if (offset + sizeof n > bytes.size()) throw std::runtime_error("MPI protocol: truncated axes");
+    std::memcpy(&n, bytes.data() + offset, sizeof n);
+    offset += sizeof n;
+    if (offset + n * sizeof(double) > bytes.size()) {
+      throw std::runtime_error("MPI protocol: truncated axes");
+    }
+    axis.values.resize(n);
+    std::memcpy(axis.values.data(), bytes.data() + offset, n * sizeof(double));
+    offset += n * sizeof(double);
+  }
+  return kind;
+}
+
+void Broadcast(Cluster* cluster, PassKind kind, const Axes& axes) {
+  if (cluster == nullptr) return;
+  const std::string bytes = EncodeAxes(kind, axes);
+  for (int r = 1; r < cluster->size(); ++r) cluster->Send(r, kTagAxes, bytes);
+  cluster->CompleteSends();
+}
+
+TableData LoadPassJournal(const fs::path& path, std::size_t points, std::size_t outputs) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const JournalContents contents = ParseJournal(bytes, path.string());
+  TableData data(points, outputs);
+  for (const JournalRecord& record : contents.records) {
+    if (record.index < points) data.Store(record.index, record.result);
+  }
+  if (data.finished != points) {
+    throw InputError(path.string() + ": the journal of a finished pass is incomplete; delete " +
+                     path.parent_path().string() + " to start the refinement over");
+  }
+  return data;
+}
+
+// What pass P + 1 can take over: the grid of pass P and its midpoint samples.
+class KnownPoints {
+ public:
+  KnownPoints(const Axes& old_axes, TableData old_data, const Axes& new_axes,
+              const std::vector<Sample>& samples, std::vector<PointResult> sample_results)
+      : old_data_(std::move(old_data)),
+        old_stride_(Strides(old_axes)),
+        new_axes_(new_axes),
+        new_stride_(Strides(new_axes)) {
+    for (std::size_t a = 0; a < new_axes.size(); ++a) {
+      std::vector<long> map;
+      for (const double x : new_axes[a].values) {
+        const auto& old = old_axes[a].values;
+        const auto it = std::lower_bound(old.begin(), old.end(), x);
+        map.push_back(it != old.end() && *it == x ? static_cast<long>(it - old.begin()) : -1);
+      }
+      old_index_.push_back(std::move(map));
+    }
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+      sampled_.emplace(PointKey(samples[s].point), std::move(sample_results[s]));
+    }
+  }
+
+  bool Lookup(std::uint64_t point, PointResult* result) const {
+    std::uint64_t old_flat = 0;
+    bool all_old = true;
+    std::vector<double> coordinates(new_axes_.size());
+    for (std::size_t a = 0; a < new_axes_.size(); ++a) {
+      const std::size_t i = (point / new_stride_[a]) % new_axes_[a].values.size();
+      coordinates[a] = new_axes_[a].values[i];
+      const long old = old_index_[a][i];
+      if (old < 0) {
+        all_old = false;
+      } else {
+        old_flat += static_cast<std::uint64_t>(old) * old_stride_[a];
+      }
+    }
+    if (all_old) {
+      *result = ResultAt(old_data_, old_flat);
+      return true;
+    }
+    const auto it = sampled_.find(PointKey(coordinates));
+    if (it == sampled_.end()) return false;
+    *result = it->second;
+    return true;
+  }
+
+ private:
+  TableData old_data_;
+  std::vector<std::size_t> old_stride_;
+  Axes new_axes_;
+  std::vector<std::size_t> new_stride_;
+  std::vector<std::vector<long>> old_index_;
+  std::unordered_map<std::string, PointResult> sampled_;
+};
+
+struct PassRecord {
+  std::size_t points = 0, new_points = 0, samples = 0, above_target = 0;
+  double worst = 0.0;
+};
+
+std::string DescribeAxes(const Axes& axes) {
+  std::string text;
+  for (const SceneAxis& axis : axes) {
+    text += (text.empty() ? "" : " × ") + axis.name + " " + std::to_string(axis.values.size());
+  }
+  return text;
+}
+
+class Refinement {
+ public:
+  Refinement(const Scene& scene, const GenerateOptions& options, Cluster* cluster)
+      : scene_(scene),
+        settings_(*scene.refine),
+        options_(options),
+        cluster_(cluster),
+        work_(WorkDirectory(options.output)),
+        identity_(SceneIdentity(scene)),
+        model_(MakeErrorModel(scene, settings_)) {}
+
+  GenerateSummary RunRoot();
+  GenerateSummary RunOtherRank();
+
+ private:
+  bool Quiet() const { return options_.progress == ProgressMode::kOff; }
+  void Say(const char* format, ...) const __attribute__((format(printf, 2, 3)));
+  std::vector<Axes> StartOrResume();
+  GenerateSummary RunPass(int pass, const Axes& axes, const KnownPoints* known, TableData* data);
+  std::optional<SampleRun> RunSamples(int pass, const std::vector<Sample>& samples);
+  ErrorEstimate FinalCheck(const Axes& axes, const TableData& data);
+  GenerateSummary WriteFinal(const Axes& axes, const TableData& data, const ErrorEstimate& check,
+                             const std::string& stop_reason);
+  std::size_t Budget() const {
+    if (options_.max_points == 0) return 0;
+    return options_.max_points > computed_ ? options_.max_points - computed_ : 1;
+  }
+  bool BudgetUsed() const { return options_.max_points > 0 && computed_ >= options_.max_points; }
+  GenerateSummary Interrupted(GenerateSummary summary) {
+    Broadcast(cluster_, PassKind::kStop, {});
+    summary.interrupted = true;
+    summary.complete = false;
+    summary.computed = computed_;
+    summary.journal = work_;
+    return summary;
+  }
+
+  const Scene& scene_;
+  const RefineSettings& settings_;
+  const GenerateOptions& options_;
+  Cluster* cluster_;
+  fs::path work_;
+  std::string identity_;
+  ErrorModel model_;
+  std::size_t computed_ = 0;
+  std::vector<PassRecord> records_;
+};
+
+void Refinement::Say(const char* format, ...) const {
+  if (Quiet()) return;
+  std::va_list args;
+  va_start(args, format);
+  std::fputs("wrc generate: ", stderr);
+  std::vfprintf(stderr, format, args);
+  std::fputc('\n', stderr);
+  va_end(args);
+}
+
+std::vector<Axes> Refinement::StartOrResume() {
+  if (fs::exists(work_ / "passes")) {
+    if (!options_.resume) {
+      throw InputError(work_.string() +
+                       " exists: an earlier refinement of this table was interrupted. Pass "
+                       "--resume to continue it (finished points are reused), or delete the "
+                       "directory to start over");
+    }
+    return ReadPasses(work_, identity_, scene_);
+  }
+  fs::create_directories(work_);
+  const std::vector<Axes> passes = {scene_.axes};
+  WritePasses(work_, identity_, passes);
+  return passes;
+}
+
+GenerateSummary Refinement::RunPass(int pass, const Axes& axes, const KnownPoints* known,
+                                    TableData* data) {
+  GenerateOptions options = options_;
+  options.output = PassOutput(work_, pass);
+  options.resume = fs::exists(PassJournal(work_, pass));
+  options.handle_signals = false;
+  options.max_points = Budget();
+  GridHooks hooks;
+  if (known != nullptr) {
+    hooks.known = [known](std::uint64_t point, PointResult* result) {
+      return known->Lookup(point, result);
+    };
+  }
+  hooks.write_table = false;
+  hooks.data_out = data;
+  hooks.watch_signals = options_.handle_signals;
+  Broadcast(cluster_, PassKind::kGrid, axes);
+  GenerateSummary summary = GenerateGrid(WithAxes(scene_, axes), options, cluster_, hooks);
+  computed_ += summary.computed;
+  return summary;
+}
+
+std::optional<SampleRun> Refinement::RunSamples(int pass, const std::vector<Sample>& samples) {
+  std::vector<std::vector<double>> points;
+  std::vector<double> z_guess;
+  for (const Sample& sample : samples) {
+    points.push_back(sample.point);
+    // Cold: where fz(z) has several roots (the flange climbing), a warm start from a distant
+    // node may find another root than `wrc verify` and a simulator's own solve would.
+    z_guess.push_back(kNaN);
+  }
+  StopControl stop(options_.cancel, Budget(), options_.handle_signals);
+  SampleRun run = SolvePoints(scene_, points, z_guess, SamplesJournal(work_, pass),
+                              identity_ + "samples" + std::to_string(pass),
+                              ThreadsFor(options_, cluster_), stop, options_.progress);
+  computed_ += run.computed;
+  if (!run.complete) return std::nullopt;
+  return run;
+}
+
+ErrorEstimate Refinement::FinalCheck(const Axes& axes, const TableData& data) {
+  SplitMix rng(Mix(settings_.seed, 0xC0FFEEull));
+  std::vector<std::vector<double>> points(kCheckPoints);
+  for (auto& point : points) {
+    for (const SceneAxis& axis : axes) {
+      point.push_back(axis.values.front() +
+                      rng.Unit() * (axis.values.back() - axis.values.front()));
+    }
+  }
+  std::vector<double> z_guess(points.size(), kNaN);
+  StopControl stop(options_.cancel, 0, options_.handle_signals);
+  const fs::path journal = work_ / "check.journal";
+  const SampleRun run = SolvePoints(scene_, points, z_guess, journal, identity_ + "check",
+                                    ThreadsFor(options_, cluster_), stop, ProgressMode::kOff);
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const PointResult& exact = run.results[i];
+    if (!Usable(exact.status) || exact.values.empty()) continue;
+    std::vector<double> estimate(exact.values.size());
+    for (std::size_t k = 0; k < estimate.size(); ++k) {
+      estimate[k] = InterpolateLinear(axes, data, k, points[i]);
+    }
+    const double load = LocalLoad(model_, points[i], {&exact.values, &estimate});
+    const double e = NormalisedError(model_, load, exact.values, estimate);
+    if (!std::isnan(e)) errors.push_back(e);
+  }
+  return Summarise(errors);
+}
+
+std::string TargetDescription(const RefineSettings& settings) {
+  nlohmann::json target = {{"load_fraction", settings.load_fraction},
+                           {"outputs", settings.outputs},
+                           {"max_points", settings.max_points},
+                           {"max_passes", settings.max_passes},
+                           {"samples", settings.samples},
+                           {"seed", settings.seed}};
+  for (const auto& [name, value] : settings.absolute) target["absolute"][name] = value;
+  for (const auto& [name, value] : settings.min_step) target["min_step"][name] = value;
+  return target.dump();
+}
+
+GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
+                                       const ErrorEstimate& check, const std::string& stop_reason) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PassRecord& r : records_) {
+    passes.push_back({{"points", r.points},
+                      {"new_points", r.new_points},
+                      {"samples", r.samples},
+                      {"intervals_above_target", r.above_target},
+                      {"worst_midpoint_error", r.worst}});
+  }
+  const nlohmann::json estimate = {{"points", check.compared},
+                                   {"p50", check.p50},
+                                   {"p95", check.p95},
+                                   {"max", check.max},
+                                   {"unit", "target"}};
+  GridHooks hooks;
+  const KnownPoints everything(axes, data, axes, {}, {});
+  hooks.known = [&everything](std::uint64_t point, PointResult* result) {
+    return everything.Lookup(point, result);
+  };
+  hooks.attributes = {{"refine_target", TargetDescription(settings_)},
+                      {"refine_passes", passes.dump()},
+                      {"refine_stop", stop_reason},
+                      {"refine_estimated_error", estimate.dump()}};
+  hooks.watch_signals = options_.handle_signals;
+  GenerateOptions options = options_;
+  options.handle_signals = false;
+  options.resume = fs::exists(options.output.string() + ".journal");
+  Broadcast(cluster_, PassKind::kFinal, axes);
+  GenerateSummary summary = GenerateGrid(WithAxes(scene_, axes), options, cluster_, hooks);
+  summary.computed = computed_;
+  summary.reused = 0;
+  if (summary.complete) {
+    std::error_code ignored;
+    fs::remove_all(work_, ignored);
+  }
+  return summary;
+}
+
+GenerateSummary Refinement::RunRoot() {
+  std::vector<Axes> passes;
+  try {
+    passes = StartOrResume();
+  } catch (...) {
+    Broadcast(cluster_, PassKind::kStop, {});
+    throw;
+  }
+  int pass = static_cast<int>(passes.size()) - 1;
+  std::optional<KnownPoints> known;
+  // The previous pass's journal is removed only once this pass is complete: without it, this
+  // pass's own journal holds every point.
+  if (pass > 0 && fs::exists(PassJournal(work_, pass - 1))) {
+    // The previous pass's grid and samples, for the points this pass takes over.
+    const Axes& previous = passes[static_cast<std::size_t>(pass - 1)];
+    TableData old =
+        LoadPassJournal(PassJournal(work_, pass - 1), PointCount(previous), scene_.outputs.size());
+    const std::vector<Sample> samples = DrawSamples(previous, settings_, pass - 1);
+    std::optional<SampleRun> run = RunSamples(pass - 1, samples);
+    if (!run) return Interrupted({});
+    known.emplace(previous, std::move(old), passes.back(), samples, std::move(run->results));
+  }
+  for (;;) {
+    const Axes axes = passes.back();
+    TableData data;
+    GenerateSummary grid = RunPass(pass, axes, known ? &*known : nullptr, &data);
+    if (!grid.complete) return Interrupted(grid);
+    known.reset();
+    if (pass > 0) {
+      std::error_code ignored;
+      fs::remove(PassJournal(work_, pass - 1), ignored);
+      fs::remove(SamplesJournal(work_, pass - 1), ignored);
+    }
+    PassRecord record;
+    record.points = PointCount(axes);
+    record.new_points = grid.computed;
+    std::string stop_reason;
+    Axes next = axes;
+    std::vector<Sample> samples;
+    std::optional<SampleRun> sample_run;
+    if (pass >= settings_.max_passes) {
+      stop_reason = "pass limit (" + std::to_string(settings_.max_passes) + " passes)";
+    } else {
+      samples = DrawSamples(axes, settings_, pass);
+      sample_run = RunSamples(pass, samples);
+      if (!sample_run) return Interrupted(grid);
+      const auto scores = ScoreIntervals(axes, data, samples, sample_run->results, model_);
+      for (const auto& axis_scores : scores) {
+        for (const IntervalScore& s : axis_scores) {
+          record.worst = std::max(record.worst, s.max_error);
+          record.above_target += s.max_error > 1.0 ? 1 : 0;
+        }
+      }
+      std::size_t refused = 0;
+      next = SplitIntervals(axes, scores, settings_.max_points, &refused);
+      if (record.above_target == 0) {
+        stop_reason = "target met: every sampled interval midpoint within the target";
+      } else if (next[0].values.size() == axes[0].values.size() &&
+                 PointCount(next) == PointCount(axes)) {
+        stop_reason = refused > 0
+                          ? "point budget (" + std::to_string(settings_.max_points) + " points)"
+                          : "smallest steps reached where the error is above target";
+      }
+    }
+    record.samples = samples.size();
+    records_.push_back(record);
+    Say("refinement pass %d: %s = %zu points, %zu intervals above target (worst %.3g × target)",
+        pass, DescribeAxes(axes).c_str(), record.points, record.above_target, record.worst);
+    if (!stop_reason.empty()) {
+      Say("refinement stops: %s", stop_reason.c_str());
+      const ErrorEstimate check = FinalCheck(axes, data);
+      Say("estimated error over %d random points: p95 %.3g, max %.3g × target", check.compared,
+          check.p95, check.max);
+      return WriteFinal(axes, data, check, stop_reason);
+    }
+    passes.push_back(next);
+    WritePasses(work_, identity_, passes);
+    known.emplace(axes, std::move(data), next, samples, std::move(sample_run->results));
+    ++pass;
+  }
+}
+
+GenerateSummary Refinement::RunOtherRank() {
+  GenerateSummary summary;
+  for (;;) {
+    int source = 0, tag = 0;
+    std::string bytes;
+    while (!cluster_->Receive(&source, &tag, &bytes)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (tag != kTagAxes) {
+      throw std::runtime_error("MPI protocol: unexpected message tag " + std::to_string(tag) +
+                               " between refinement passes");
+    }
+    Axes axes;
+    const PassKind kind = DecodeAxes(bytes, scene_, &axes);
+    if (kind == PassKind::kStop) {
+      summary.is_root = false;
+      summary.interrupted = true;
+      return summary;
+    }
+    GenerateOptions options = options_;
+    options.handle_signals = false;
+    options.resume = true;
+    GridHooks hooks;
+    hooks.watch_signals = options_.handle_signals;
+    summary = GenerateGrid(WithAxes(scene_, axes), options, cluster_, hooks);
+    if (kind == PassKind::kFinal || summary.interrupted) return summary;
+  }
+}
+
+}  // namespace
+
+double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& data, std::size_t k,
+                         const std::vector<double>& point) {
+  const std::vector<std::size_t> stride = Strides(axes);
+  std::vector<std::size_t> lower(axes.size());
+  std::vector<double> t(axes.size(), 0.0);
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    if (v.size() == 1) continue;
+    const double x = std::clamp(point[a], v.front(), v.back());
+    std::size_t i = static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), x) - v.begin());
+    i = std::min(std::max<std::size_t>(i, 1), v.size() - 1) - 1;
+    lower[a] = i;
+    t[a] = (x - v[i]) / (v[i + 1] - v[i]);
+  }
+  double sum = 0.0;
+  for (std::size_t corner = 0; corner < (std::size_t{1} << axes.size()); ++corner) {
+    double weight = 1.0;
+    std::uint64_t flat = 0;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const bool up = (corner >> a) & 1;
+      if (axes[a].values.size() == 1 && up) {
+        weight = 0.0;
+        break;
+      }
+      weight *= up ? t[a] : 1.0 - t[a];
+      flat += (lower[a] + (up ? 1 : 0)) * stride[a];
+    }
+    if (weight == 0.0) continue;
+    sum += weight * data.values[k][flat];
+  }
+  return sum;
+}
+
+GenerateSummary RefineTable(const Scene& scene, const GenerateOptions& options, Cluster* cluster) {
+  std::optional<InterruptHandlers> handlers;
+  if (options.handle_signals) {
+    ClearInterrupt();
+    handlers.emplace();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  Refinement refinement(scene, options, cluster);
+  GenerateSummary summary = (cluster != nullptr && cluster->rank() != 0) ? refinement.RunOtherRank()
+                                                                         : refinement.RunRoot();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace wrc::gen

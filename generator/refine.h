@@ -1,0 +1,59 @@
+#pragma once
+// Error-driven node placement (`[table.refine]`): the grid passes of a refinement and what they
+// share with a plain `wrc generate` run.
+//
+// A refinement starts from the scene's axes and repeats: solve the whole tensor grid (a plain
+// grid run, journaled and resumable, points of earlier passes taken over), measure each axis
+// interval's interpolation error with exact solves at its midpoint (the other coordinates drawn
+// uniformly over their ranges and moved to the nearest node, so that the samples weigh the
+// state space by volume, as a uniform verification does), and split the intervals whose error
+// exceeds the target, most harmful first, within the point budget. Nodes are only ever added,
+// so every node of a pass is a node of the next; the midpoint samples of a split interval are
+// nodes of the next pass too. The final grid is written as one ordinary table whose refine_*
+// attributes say how it was made.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "generator/cluster.h"
+#include "generator/table_data.h"
+#include "wrc/generator.h"
+
+namespace wrc::gen {
+
+/// What a refinement asks of one grid run beyond a plain `wrc generate`.
+struct GridHooks {
+  /// Rank 0: a point already known from an earlier pass (true, with its result), taken over
+  /// and journaled instead of solved.
+  std::function<bool(std::uint64_t point, PointResult* result)> known;
+  /// False: stop once every point is in the journal (kept, not removed) and hand the data to
+  /// data_out; no table file is written.
+  bool write_table = true;
+  TableData* data_out = nullptr;
+  /// Root attributes written into the table after the standard ones.
+  std::vector<std::pair<std::string, std::string>> attributes;
+  /// Stop on SIGINT/SIGTERM handled by the caller's InterruptHandlers.
+  bool watch_signals = false;
+};
+
+/// Worker threads of this process for these options (0: the cores shared out among the local
+/// ranks).
+int ThreadsFor(const GenerateOptions& options, const Cluster* cluster);
+
+/// One tensor-grid run (GenerateTable without refinement). Collective under MPI.
+GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options, Cluster* cluster,
+                             const GridHooks& hooks);
+
+/// GenerateTable for a scene with `refine` set. Collective under MPI: rank 0 decides the
+/// nodes and sends every pass's axes to the other ranks, which solve their share of each grid.
+GenerateSummary RefineTable(const Scene& scene, const GenerateOptions& options, Cluster* cluster);
+
+/// Multilinear interpolation of output `k` of a finished grid at `point` (inside the axes'
+/// ranges; clamped otherwise). NaN when a corner with non-zero weight is NaN.
+double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& data, std::size_t k,
+                         const std::vector<double>& point);
+
+}  // namespace wrc::gen
