@@ -1,5 +1,7 @@
 // `wrc info TABLE.h5 [--json]`: what a table holds and where it came from.
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -25,6 +27,8 @@ std::string Attribute(const TableInfo& info, const std::string& name) {
   }
   return {};
 }
+
+nlohmann::json Refinement(const TableInfo& info);
 
 json InfoJson(const std::string& path, const TableInfo& info) {
   json axes = json::array();
@@ -75,7 +79,51 @@ json InfoJson(const std::string& path, const TableInfo& info) {
       {"profiles",
        {{"rail", {{"name", info.rail_profile_name}, {"bytes", info.rail_profile_bytes}}},
         {"wheel", {{"name", info.wheel_profile_name}, {"bytes", info.wheel_profile_bytes}}}}},
-      {"attributes", attributes}};
+      {"attributes", attributes},
+      {"refinement", Refinement(info)}};
+}
+
+// The refine_* attributes of a refined table as one JSON object (null for other tables).
+nlohmann::json Refinement(const TableInfo& info) {
+  const std::string target = Attribute(info, "refine_target");
+  if (target.empty()) return nullptr;
+  const auto parse = [](const std::string& text) {
+    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  };
+  return {{"target", parse(target)},
+          {"passes", parse(Attribute(info, "refine_passes"))},
+          {"stop", Attribute(info, "refine_stop")},
+          {"estimated_error", parse(Attribute(info, "refine_estimated_error"))}};
+}
+
+void PrintRefinement(const TableInfo& info) {
+  const nlohmann::json r = Refinement(info);
+  if (r.is_null()) return;
+  const nlohmann::json& target = r["target"];
+  std::cout << "refinement: forces within " << 100 * target.value("load_fraction", 0.0)
+            << " % of the local wheel load";
+  if (target.contains("absolute")) {
+    for (const auto& [name, value] : target["absolute"].items()) {
+      std::cout << ", " << name << " within " << value.get<double>();
+    }
+  }
+  std::cout << " (at sampled interval midpoints); budget " << target.value("max_points", 0)
+            << " points, " << target.value("max_passes", 0) << " passes\n";
+  int pass = 0;
+  for (const nlohmann::json& p : r["passes"]) {
+    std::cout << "  pass " << pass++ << ": " << p.value("points", 0) << " points ("
+              << p.value("new_points", 0) << " solved), " << p.value("samples", 0)
+              << " midpoint solves, " << p.value("intervals_above_target", 0)
+              << " intervals above target, worst " << p.value("worst_midpoint_error", 0.0)
+              << " × target\n";
+  }
+  std::cout << "  stopped: " << r["stop"].get<std::string>() << '\n';
+  const nlohmann::json& e = r["estimated_error"];
+  if (e.is_object() && e["p95"].is_number()) {
+    std::cout << "  estimated error at " << e.value("points", 0)
+              << " random points (multilinear): p50 " << e["p50"].get<double>() << ", p95 "
+              << e["p95"].get<double>() << ", max " << e["max"].get<double>() << " × target\n";
+  }
 }
 
 void PrintHuman(const std::string& path, const TableInfo& info) {
@@ -92,8 +140,19 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
   for (const TableInfo::Axis& axis : info.axes) {
     std::cout << "  " << std::left << std::setw(14) << axis.name << std::right << std::setw(6)
               << axis.values.size() << " values  " << axis.values.front() << " to "
-              << axis.values.back() << ' ' << axis.unit << '\n';
+              << axis.values.back() << ' ' << axis.unit;
+    double smallest = INFINITY, largest = 0.0;
+    for (std::size_t i = 1; i < axis.values.size(); ++i) {
+      smallest = std::min(smallest, axis.values[i] - axis.values[i - 1]);
+      largest = std::max(largest, axis.values[i] - axis.values[i - 1]);
+    }
+    // Steps equal to round-off of the values' magnitude count as uniform.
+    if (axis.values.size() > 2 && largest - smallest > 1e-9 * largest) {
+      std::cout << ", steps " << smallest << " to " << largest;
+    }
+    std::cout << '\n';
   }
+  PrintRefinement(info);
   std::cout << "outputs (range over ok points):\n";
   for (const TableInfo::Output& output : info.outputs) {
     std::cout << "  " << std::left << std::setw(14) << output.name << std::setw(8) << output.unit
