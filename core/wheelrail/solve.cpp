@@ -155,8 +155,9 @@ std::string Fixed(double value, int decimals) {
 // Whether the half-space influence coefficients fit the patch (paper §2.4, §3.3: they take
 // each body as a half-space, flat across the contact). With a the half-size of the contact
 // and R a radius of curvature of the surface there, the surfaces turn by about 2a/R across
-// it; Hertz theory, and with it the half-space approximation, asks for a/R small, a/R <= 0.1
-// in Johnson's (Contact Mechanics §4.1) reading. So an interpenetration region across which
+// it. Hertz theory, and with it the half-space approximation, asks for a ≪ R (Johnson,
+// Contact Mechanics §4.1); a/R = 0.1 is taken here as the edge of "small", the order of the
+// relative error the flat-body influence coefficients then make. So a region across which
 // the rail turns by more than 0.2 rad, or whose length along x exceeds 0.1 of the wheel's
 // radius there, is solved but flagged: the elastic part is a coarse approximation there.
 void AddHalfSpaceWarnings(const Problem& pb, double z, WheelRailResult& result) {
@@ -195,7 +196,7 @@ void AddHalfSpaceWarnings(const Problem& pb, double z, WheelRailResult& result) 
 // Where the interpenetration reaches an end of the rail profile, or a rail point above which
 // the wheel profile has ended (the flange tip, the field-side chamfer), the contact would
 // continue on surface that the profiles do not describe: the result is that of the bodies cut
-// off there (as CONTACT computes it), and says so. Not an error: the geometry inside is exact,
+// off there, and says so. Not an error: the geometry inside is exact,
 // and test geometries (a ball in a conforming groove) are in contact across their whole width.
 void AddTruncationWarnings(const Problem& pb, double z, WheelRailResult& result) {
   const auto& samples = pb.search.samples;
