@@ -6,7 +6,9 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <utility>
 
+#include "wrc/errors.h"
 #include "wrc/generator.h"
 
 namespace wrc {
@@ -98,10 +100,11 @@ std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult&
   return values;
 }
 
-PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
-                            double z_guess) {
+namespace {
+
+// One solve of the point from the given start (NaN: the solver's own cold start).
+PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indices, double z_guess) {
   PointResult point;
-  const auto start = std::chrono::steady_clock::now();
   try {
     Case c = CaseAtIndex(scene, indices);
     // Messages name the scene by its file name only, so that they (and so the table) do not
@@ -125,6 +128,32 @@ PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& 
     point.status = PointStatus::kError;
     point.values.assign(scene.outputs.size(), kNaN);
     point.message = "unknown exception";
+  }
+  return point;
+}
+
+bool Failed(const PointResult& point) {
+  return point.status == PointStatus::kError || point.status == PointStatus::kNotConverged;
+}
+
+}  // namespace
+
+PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
+                            double z_guess) {
+  const auto start = std::chrono::steady_clock::now();
+  PointResult point = SolveOnce(scene, indices, z_guess);
+  // A warm start from the neighbouring point can lead the vertical force iteration astray
+  // where the contact changes between the two (a patch appearing at the flange): such a point
+  // is solved once more from the solver's own cold start, and then stored exactly as a cold
+  // solve. Bad input fails the same way again and keeps its reason (once); a different reason
+  // from the warm start is kept after it.
+  if (Failed(point) && std::isfinite(z_guess)) {
+    PointResult cold = SolveOnce(scene, indices, kNaN);
+    if (Failed(cold) && cold.message != point.message) {
+      cold.message +=
+          " (from the warm start z = " + FormatNumber(z_guess) + " mm: " + point.message + ")";
+    }
+    point = std::move(cold);
   }
   point.solve_time_s =
       std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();

@@ -132,9 +132,11 @@ class Table {
   void EvalLinear(const Located& located, double* out, double* d_out) const noexcept;
   void EvalCubic(const Located& located, double* out, double* d_out) const noexcept;
   void BuildCubic();
-  /// After evaluating a cell with a non-finite corner: WRC_ERR_NO_DATA if a result is NaN,
-  /// else flags.
-  int CheckFinite(int flags, const double* out, const double* d_out) const noexcept;
+  /// A cell with a failed (non-finite) corner, in either mode: per output the multilinear
+  /// weights renormalised over the corners with a finite value (runtime/README.md). Returns
+  /// flags, or WRC_ERR_NO_DATA after SetLastError when every corner of an output failed.
+  int EvalValidCorners(const Located& located, int flags, double* out,
+                       double* d_out) const noexcept;
 
   std::string path_;
   std::vector<Axis> axes_;

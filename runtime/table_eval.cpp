@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 
 #include "runtime/kernels.h"
 #include "runtime/table.h"
@@ -162,21 +164,105 @@ void Table::EvalLinear(const Located& located, double* out, double* d_out) const
   kernels_->linear(terms, out, d_out);
 }
 
-int Table::CheckFinite(int flags, const double* out, const double* d_out) const noexcept {
+namespace {
+
+// Corner weights of the fallback at one point and their sums over the finite corners of one
+// output; the derivative sums only when asked for.
+struct ValidCornerSums {
+  double weight = 0.0;  // Σ w_c
+  double value = 0.0;   // Σ w_c f_c
+  double d_weight[kMaxAxes] = {};
+  double d_value[kMaxAxes] = {};
+};
+
+// Σ over the cell's corners c whose datum values[offset_c] is finite, with corner weights
+// w_c = ∏_j (bit j of c ? t_j : 1 - t_j) and their derivatives along each active axis.
+ValidCornerSums SumValidCorners(const double* values, const std::size_t* corner_offset,
+                                int n_active, const double* t, const double* inverse_step,
+                                bool derivatives) {
+  ValidCornerSums sums;
+  const std::size_t n_corners = std::size_t{1} << n_active;
+  for (std::size_t c = 0; c < n_corners; ++c) {
+    const double f = values[corner_offset[c]];
+    if (!std::isfinite(f)) continue;
+    double w = 1.0;
+    for (int j = 0; j < n_active; ++j) w *= (c >> j & 1) != 0 ? t[j] : 1.0 - t[j];
+    sums.weight += w;
+    sums.value += w * f;
+    if (!derivatives) continue;
+    for (int j = 0; j < n_active; ++j) {
+      // ∂w_c/∂x_j: axis j's factor becomes ±1/h.
+      double dw = (c >> j & 1) != 0 ? inverse_step[j] : -inverse_step[j];
+      for (int m = 0; m < n_active; ++m) {
+        if (m != j) dw *= (c >> m & 1) != 0 ? t[m] : 1.0 - t[m];
+      }
+      sums.d_weight[j] += dw;
+      sums.d_value[j] += dw * f;
+    }
+  }
+  return sums;
+}
+
+}  // namespace
+
+int Table::EvalValidCorners(const Located& located, int flags, double* out,
+                            double* d_out) const noexcept {
   const std::size_t n_out = outputs_.size();
+  const std::size_t n_axes = axes_.size();
+  const int n_active = static_cast<int>(active_axes_.size());
+  const double* cell = values_.data() + located.base_node * n_out;
+  if (d_out != nullptr) {
+    for (std::size_t i = 0; i < n_out * n_axes; ++i) d_out[i] = 0.0;
+  }
+  // Offsets of the 2^D corners from the lower one (bit j of c: upper node on active axis j).
+  std::size_t corner_offset[std::size_t{1} << kMaxAxes];
+  corner_offset[0] = 0;
+  for (int j = 0; j < n_active; ++j) {
+    const std::size_t half = std::size_t{1} << j;
+    for (std::size_t c = 0; c < half; ++c) {
+      corner_offset[c + half] = corner_offset[c] + lookup_[j].node_stride * n_out;
+    }
+  }
+  double t[kMaxAxes] = {};
+  double edge_t[kMaxAxes] = {};
+  double inverse_step[kMaxAxes] = {};
+  for (int j = 0; j < n_active; ++j) {
+    t[j] = located.cell[j].t;
+    // Only where every corner of non-zero weight failed (the point on a face or at a node of
+    // failed corners): t kept 1e-6 inside the cell gives each finite corner a weight of at
+    // least 1e-6^8 = 1e-48, far above underflow, so the nearest finite corners decide.
+    constexpr double kInside = 1e-6;
+    edge_t[j] = std::clamp(t[j], kInside, 1.0 - kInside);
+    inverse_step[j] = located.cell[j].inverse_step;
+  }
+  int missing = -1;  // An output whose every corner failed.
   for (std::size_t k = 0; k < n_out; ++k) {
-    bool finite = std::isfinite(out[k]);
-    if (d_out != nullptr) {
-      for (std::size_t a = 0; a < axes_.size(); ++a)
-        finite &= std::isfinite(d_out[k * axes_.size() + a]);
+    ValidCornerSums sums =
+        SumValidCorners(cell + k, corner_offset, n_active, t, inverse_step, d_out != nullptr);
+    if (sums.weight == 0.0) {
+      sums = SumValidCorners(cell + k, corner_offset, n_active, edge_t, inverse_step,
+                             d_out != nullptr);
     }
-    if (!finite) {
-      SetLastError(
-          "wrc_table_eval: %s: output '%s' has no finite value here: a node of the cell holds "
-          "NaN (a failed solve, /status != 0)",
-          path_.c_str(), outputs_[k].name.c_str());
-      return WRC_ERR_NO_DATA;
+    if (sums.weight == 0.0) {
+      missing = static_cast<int>(k);
+      out[k] = std::numeric_limits<double>::quiet_NaN();
+      continue;
     }
+    out[k] = sums.value / sums.weight;
+    if (d_out == nullptr) continue;
+    for (int j = 0; j < n_active; ++j) {
+      if (located.derivative_zero[j]) continue;
+      const std::size_t a = static_cast<std::size_t>(active_axes_[static_cast<std::size_t>(j)]);
+      // Quotient rule on Σ w f / Σ w.
+      d_out[k * n_axes + a] = (sums.d_value[j] - out[k] * sums.d_weight[j]) / sums.weight;
+    }
+  }
+  if (missing >= 0) {
+    SetLastError(
+        "wrc_table_eval: %s: output '%s' has no data here: every node of the cell failed "
+        "(/status != 0 and NaN)",
+        path_.c_str(), outputs_[static_cast<std::size_t>(missing)].name.c_str());
+    return WRC_ERR_NO_DATA;
   }
   return flags;
 }
@@ -185,16 +271,17 @@ int Table::Eval(const double* point, double* out, double* d_out) const noexcept 
   Located located;
   const int located_code = Locate(point, located);
   if (located_code < 0) return located_code;
-  std::uint8_t cell_flags = 0;
-  if (interpolation_ == WRC_INTERP_CUBIC) {
+  const bool cubic = interpolation_ == WRC_INTERP_CUBIC;
+  const std::uint8_t cell_flags =
+      cubic ? cubic_flags_[located.base_node] : linear_flags_[located.base_node];
+  const int flags = located.flags | (cell_flags & kCellStatus);
+  // A cell with a failed corner takes the slow path in both modes; all others the kernels.
+  if ((cell_flags & kCellNonFinite) != 0) return EvalValidCorners(located, flags, out, d_out);
+  if (cubic) {
     EvalCubic(located, out, d_out);
-    cell_flags = cubic_flags_[located.base_node];
   } else {
     EvalLinear(located, out, d_out);
-    cell_flags = linear_flags_[located.base_node];
   }
-  const int flags = located.flags | (cell_flags & kCellStatus);
-  if ((cell_flags & kCellNonFinite) != 0) return CheckFinite(flags, out, d_out);
   return flags;
 }
 

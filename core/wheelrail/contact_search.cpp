@@ -80,7 +80,9 @@ ContactSearch SearchContact(const PlacedRail& rail, const PlacedWheel& wheel, do
   // samples are never located.
   auto locate = [&](LocusSample& sample, double guess) {
     sample.alpha = rail.InclinationAt(sample.s);
-    return Locate(wheel, sample.y, sample.z, guess, sample);
+    const bool located = Locate(wheel, sample.y, sample.z, guess, sample);
+    sample.off_wheel = !located;
+    return located;
   };
   // Most of the profile pair is far apart, and locating the wheel there is most of the cost,
   // so the samples are located in levels: every kStrides[0]-th first, then every

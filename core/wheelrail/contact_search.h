@@ -22,6 +22,7 @@ struct LocusSample {
   double curvature = 0.0;   ///< d²gap/dx² at the locus, 1/mm (> 0).
   bool valid = false;       ///< The wheel lies above this rail point and comes within the
                             ///< search's reach of the rail (gap = +inf otherwise).
+  bool off_wheel = false;   ///< Searched, but the wheel profile does not lie above this point.
 };
 
 struct ContactSearch {

@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "core/wheelrail/contact_search.h"
@@ -25,6 +27,12 @@ using wr::WheelsetKinematics;
 // extents are integrals over these samples; 0.05 mm keeps their error far below the element
 // sizes (>= 0.1 mm) at a cost of a few thousand wheel evaluations.
 constexpr double kSearchStep = 0.05;
+// The first contact search of a prescribed-fz solve covers wheelset heights up to this far
+// below first contact, mm: tread contact approaches are 0.01-0.2 mm and flange contacts up to
+// ~70° stay within 1 mm vertically (every reference case does). A deeper z of the iteration
+// (at 76° the vertical interpenetration is four times the normal one) searches again, further
+// (CoverHeight).
+constexpr double kInitialReach = 1.0;
 
 void Validate(const Case& c) {
   if (c.type != CaseType::kWheelRail) throw InputError("not a wheel-rail case");
@@ -54,6 +62,7 @@ struct Problem {
   std::shared_ptr<const ProfileSpline> wheel_spline;
   WheelsetKinematics kin;  // right-side equivalent
   ContactSearch search;    // at kin.z = 0
+  double reach = 0.0;      // the search covers z up to first contact + reach
   CombinedElasticity material;
   double mirror = 1.0;  // −1 for a left case solved as its mirror image
   // Per patch, keyed by the rail arc length at the middle of its extent: operators and warm
@@ -111,10 +120,99 @@ double HertzGuess(const Problem& pb, double fz, double first_contact) {
   const double a1 = 0.5 * cos_a * at.curvature, b1 = 0.5 * cos_a * gap_curvature;
   if (!(cos_a > 0.1 && a1 > 0.0 && b1 > 0.0 && b1 < 1e4 * a1 && a1 < 1e4 * b1)) return NAN;
   const HertzContact hertz(a1, b1, pb.material.EffectiveModulus());
-  // Kept within half the elastic limit: a guess beyond it would end the iteration with an
-  // error where the secant from a shallower start still finds the load.
+  // Kept within half the first search's reach: a deeper guess (steep flanges, where cos_a is
+  // small and the Hertz curvatures least reliable) would search again and solve a first
+  // patch larger than the final one, where the secant from a shallower start costs less.
   const double sink = hertz.ApproachForForce(fz / cos_a) / cos_a;
-  return first_contact + std::min(sink, 0.5 * pb.options->max_interpenetration);
+  return first_contact + std::min(sink, 0.5 * kInitialReach);
+}
+
+// The contact search at z = 0 with its samples located wherever the gap comes within `reach`
+// of first contact (and below z_limit, when z is prescribed).
+void Search(Problem& pb, double reach, double z_limit) {
+  const PlacedWheel wheel0(pb.wheel_spline, pb.c->wheelset, pb.kin);
+  pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, reach, z_limit);
+  pb.reach = reach;
+}
+
+// Wheelset height z below the heights the search covers: searches again with a reach that
+// covers it with a margin. Samples that do not interpenetrate at z enter no patch, so the
+// results at the heights already solved are the same with either search.
+void CoverHeight(Problem& pb, double z, double first_contact) {
+  if (z - first_contact < pb.reach) return;
+  // Half as far again: the secant steps of the iteration that follow stay inside.
+  Search(pb, std::max(2.0 * pb.reach, 1.5 * (z - first_contact)),
+         std::numeric_limits<double>::infinity());
+}
+
+// `value` with `decimals` digits after the point, for messages.
+std::string Fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// Whether the half-space influence coefficients fit the patch (paper §2.4, §3.3: they take
+// each body as a half-space, flat across the contact). With a the half-size of the contact
+// and R a radius of curvature of the surface there, the surfaces turn by about 2a/R across
+// it. Hertz theory, and with it the half-space approximation, asks for a ≪ R (Johnson,
+// Contact Mechanics §4.1); a/R = 0.1 is taken here as the edge of "small", the order of the
+// relative error the flat-body influence coefficients then make. So a region across which
+// the rail turns by more than 0.2 rad, or whose length along x exceeds 0.1 of the wheel's
+// radius there, is solved but flagged: the elastic part is a coarse approximation there.
+void AddHalfSpaceWarnings(const Problem& pb, double z, WheelRailResult& result) {
+  constexpr double kMaxSizeOverRadius = 0.1;
+  const auto& samples = pb.search.samples;
+  const int n = static_cast<int>(samples.size());
+  for (int k = 0; k < n;) {
+    if (wr::LocusHalfLength(samples[k], z) == 0.0) {
+      ++k;
+      continue;
+    }
+    double alpha_min = samples[k].alpha, alpha_max = samples[k].alpha, size_over_radius = 0.0;
+    const double y_first = samples[k].y;
+    for (; k < n && wr::LocusHalfLength(samples[k], z) > 0.0; ++k) {
+      alpha_min = std::min(alpha_min, samples[k].alpha);
+      alpha_max = std::max(alpha_max, samples[k].alpha);
+      size_over_radius =
+          std::max(size_over_radius, wr::LocusHalfLength(samples[k], z) * samples[k].curvature);
+    }
+    const std::string where = "the interpenetration at y = " + Fixed(pb.mirror * y_first, 2) +
+                              " to " + Fixed(pb.mirror * samples[k - 1].y, 2) + " mm (track frame)";
+    if (alpha_max - alpha_min > 2.0 * kMaxSizeOverRadius) {
+      result.warnings.push_back(where + ": the rail turns by " + Fixed(alpha_max - alpha_min, 3) +
+                                " rad across it (more than 0.2 rad): the half-space "
+                                "influence coefficients take it as flat");
+    }
+    if (size_over_radius > kMaxSizeOverRadius) {
+      result.warnings.push_back(where + ": its half-length along the track is " +
+                                Fixed(size_over_radius, 3) +
+                                " of the wheel radius (more than 0.1): the half-space "
+                                "influence coefficients take the wheel as flat");
+    }
+  }
+}
+
+// Where the interpenetration reaches an end of the rail profile, or a rail point above which
+// the wheel profile has ended (the flange tip, the field-side chamfer), the contact would
+// continue on surface that the profiles do not describe: the result is that of the bodies cut
+// off there, and says so. Not an error: the geometry inside is exact,
+// and test geometries (a ball in a conforming groove) are in contact across their whole width.
+void AddTruncationWarnings(const Problem& pb, double z, WheelRailResult& result) {
+  const auto& samples = pb.search.samples;
+  const int n = static_cast<int>(samples.size());
+  for (int k = 0; k < n; ++k) {
+    if (!samples[k].valid || samples[k].gap >= z) continue;
+    const bool rail_end = k == 0 || k == n - 1;
+    const bool wheel_end = !rail_end && (samples[k - 1].off_wheel || samples[k + 1].off_wheel);
+    if (!rail_end && !wheel_end) continue;
+    result.warnings.push_back(
+        std::string("the interpenetration reaches ") +
+        (rail_end ? "an end of the rail profile" : "the end of the wheel profile") +
+        " at y = " + Fixed(pb.mirror * samples[k].y, 2) +
+        " mm (track frame): contact beyond it, on surface the profiles do "
+        "not describe, is not in the result");
+  }
 }
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
@@ -141,18 +239,6 @@ WheelRailResult SolveAt(const Problem& pb, double z, bool tangential, WheelRailT
 
   WheelRailResult result;
   result.z = z;
-  double deepest = 0.0;
-  for (const auto& sample : pb.search.samples) {
-    if (sample.valid) deepest = std::max(deepest, z - sample.gap);
-  }
-  if (deepest > pb.options->max_interpenetration) {
-    throw InputError(pb.c->source_name + ": at wheelset z = " + FormatNumber(z) +
-                     " mm the wheel sinks " + FormatNumber(deepest) +
-                     " mm into the rail, beyond the " +
-                     FormatNumber(pb.options->max_interpenetration) +
-                     " mm of elastic contact: check the wheelset pose, the placement " +
-                     "([track], [wheelset]) or state.fz");
-  }
   const auto extents = wr::FindPatches(pb.search, z, pb.c->method.combine_distance);
   const Eigen::Vector3d rail_origin(0.0, pb.rail->origin()(0), pb.rail->origin()(1));
   std::vector<bool> taken(pb.caches.size(), false);
@@ -277,10 +363,13 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   timings.profiles = since(t_start);
   {
     const auto t_search = Clock::now();
-    const PlacedWheel wheel0(pb.wheel_spline, c.wheelset, pb.kin);
     // With z prescribed only samples that interpenetrate at that z matter.
-    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, options.max_interpenetration,
-                                  st.z ? *st.z : std::numeric_limits<double>::infinity());
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    if (st.z) {
+      Search(pb, kInfinity, *st.z);
+    } else {
+      Search(pb, kInitialReach, kInfinity);
+    }
     timings.search = since(t_search);
   }
   bool any_valid = false;
@@ -322,23 +411,29 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     double last_error = 1.0, previous_error = 1.0;
     WheelRailResult last_normal;
     double last_normal_z = std::numeric_limits<double>::quiet_NaN();
+    // A height that cannot be solved (the contact leaves the profiles, a patch too large to
+    // solve) lies below every height that carries fz, as the force grows with z: it bounds
+    // the bracket from above like a force of +inf, and its reason is kept for the message
+    // should fz lie beyond it.
+    std::string unsolvable;
+    bool hi_unsolvable = false;
     auto normal_force = [&](double z) {
       ++iterations;
+      CoverHeight(pb, z, first_contact);
       try {
         const double expected_error = last_error * std::min(1.0, last_error / previous_error);
         const double normal_tolerance =
             std::clamp(1e-2 * expected_error, options.normal.tolerance, 1e-5);
         last_normal = SolveAt(pb, z, false, &timings, normal_tolerance);
-        last_normal_z = z;
-        const double f = last_normal.force_T(2);
-        previous_error = last_error;
-        last_error = std::fabs(f - fz) / fz;
-        return f;
       } catch (const InputError& e) {
-        // The search for z went beyond elastic contact: the force cannot be carried.
-        throw InputError(c.source_name + ": state.fz = " + FormatNumber(fz) +
-                         " N is not reached within elastic contact (" + e.what() + ")");
+        unsolvable = e.what();
+        return std::numeric_limits<double>::infinity();
       }
+      last_normal_z = z;
+      const double f = last_normal.force_T(2);
+      previous_error = last_error;
+      last_error = std::fabs(f - fz) / fz;
+      return f;
     };
     // Secant on G(z) = F(z)^(2/3): for Hertzian contact F ∝ δ^1.5 with δ = z − z_c, so G is
     // close to linear in z and the secant converges in a few steps. A bracket [lo, hi] with
@@ -362,6 +457,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
       } else if (z < hi) {
         hi = z;
         g_hi = g_of(f);
+        hi_unsolvable = !std::isfinite(f);
       }
     };
     record(z0, f0);
@@ -385,16 +481,23 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
         if (hi == 1e300 && !(z1 > lo)) z1 = lo + 2.0 * (lo - first_contact) + 1e-3;
         f1 = normal_force(z1);
         record(z1, f1);
-        if (z1 != z0) stiffness = (f1 - f0) / (z1 - z0);
-        if (std::fabs(f1 - fz) <= phase_tolerance) break;
         if (hi < 1e300 && hi - lo < 1e-13) break;
+        if (!std::isfinite(f1)) {
+          // Unsolvable: bisection towards the solved heights; the secant pair stays.
+          z1 = 0.5 * (lo + hi);
+          continue;
+        }
+        const bool secant_pair = z1 != z0 && std::isfinite(f0);
+        if (secant_pair) stiffness = (f1 - f0) / (z1 - z0);
+        if (std::fabs(f1 - fz) <= phase_tolerance) break;
         const double ga = g_of(f0), gb = g_of(f1);
-        double z2 = gb != ga ? z1 + (g_target - gb) * (z1 - z0) / (gb - ga) : 0.5 * (lo + hi);
-        if (hi < 1e300 && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
+        double z2 = secant_pair && gb != ga ? z1 + (g_target - gb) * (z1 - z0) / (gb - ga)
+                                            : 0.5 * (lo + hi);
+        if (hi < 1e300 && std::isfinite(g_hi) && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
           z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);
         }
         if (std::fabs(f1 - fz) <= hand_over * fz && z2 > lo && (hi == 1e300 || z2 < hi) &&
-            z1 != z0) {
+            secant_pair) {
           z_hand_over = z2;
           f_hand_over = f1 + (f1 - f0) / (z1 - z0) * (z2 - z1);
           break;
@@ -403,9 +506,15 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
         f0 = f1;
         z1 = z2;
       }
-      if (std::isnan(z_hand_over) && std::fabs(f1 - fz) > phase_tolerance && hi == 1e300) {
+      const bool short_of_fz = std::isnan(z_hand_over) && !(std::fabs(f1 - fz) <= phase_tolerance);
+      if (short_of_fz && hi == 1e300) {
         throw InputError(c.source_name + ": state.fz = " + FormatNumber(fz) +
                          " N is not reached: the wheel finds no support on the rail");
+      }
+      if (short_of_fz && hi_unsolvable) {
+        throw InputError(c.source_name + ": state.fz = " + FormatNumber(fz) +
+                         " N is not reached before the contact can no longer be solved (" +
+                         unsolvable + ")");
       }
     }
     if (!(stiffness > 0.0)) {
@@ -417,6 +526,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     bool met = false;
     if (!c.effects.tangential) {
       // The last normal solve, unless it was a loose one (then solved again at the tolerance).
+      CoverHeight(pb, z, first_contact);
       result = z == last_normal_z && last_error <= 0.25 * options.fz_tolerance
                    ? std::move(last_normal)
                    : SolveAt(pb, z, false, &timings);
@@ -438,7 +548,15 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
       for (int pass = 0; pass < 20 && !met; ++pass) {
         ++iterations;
         const bool loose = pass == 0 && loose_first;
-        result = SolveAt(pb, z, true, &timings, 0.0, loose ? kFirstPassTangential : 0.0);
+        CoverHeight(pb, z, first_contact);
+        try {
+          result = SolveAt(pb, z, true, &timings, 0.0, loose ? kFirstPassTangential : 0.0);
+        } catch (const InputError&) {
+          // A Newton step to a height that cannot be solved (see normal_force): half of it.
+          if (pass == 0) throw;
+          z = 0.5 * (z + z_last);
+          continue;
+        }
         const double f = result.force_T(2);
         met = !loose && std::fabs(f - fz) <= tolerance;
         if (pass > 0 && z != z_last) {
@@ -463,6 +581,10 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     }
   }
   result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
+  if (!result.patches.empty()) {
+    AddTruncationWarnings(pb, result.z, result);
+    AddHalfSpaceWarnings(pb, result.z, result);
+  }
   LocateResultant(pb, result);
   result.fz_iterations = iterations;
   timings.total = since(t_start);

@@ -52,8 +52,9 @@ typedef struct wrc_table wrc_table;
 #define WRC_ERR_NULL_POINTER (-1)
 /** A coordinate of the point was NaN. */
 #define WRC_ERR_NAN_INPUT (-2)
-/** The table holds no finite value there: a node of the cell is NaN (a failed solve). The
- *  affected entries of out are NaN. */
+/** The table holds no value there: every node of the cell failed (NaN) for some output. That
+ *  output's entries of out are NaN; wrc_last_error() names it. A cell with only some failed
+ *  nodes is interpolated from its valid corners instead (see wrc_table_eval()). */
 #define WRC_ERR_NO_DATA (-3)
 /** An argument was out of range (index, interpolation mode). */
 #define WRC_ERR_INVALID_ARGUMENT (-4)
@@ -116,6 +117,13 @@ WRC_API const double* wrc_table_axis_values(const wrc_table* t, int i);
 WRC_API const char* wrc_table_output_name(const wrc_table* t, int i);
 
 /** Interpolates all outputs at a point.
+ *
+ *  Next to a failed node (/status != 0, outputs NaN) the result comes from the valid corners of
+ *  the cell: per output, the multilinear weights renormalised over the corners with a finite
+ *  value (a convex combination of them, continuous inside the cell), in both interpolation
+ *  modes, with WRC_FLAG_STATUS set; only a cell whose every node failed gives WRC_ERR_NO_DATA.
+ *  A finite point inside the table therefore never gets NaN otherwise. runtime/README.md
+ *  describes the fallback and where it is not continuous.
  *  @param point One coordinate per axis, in axis order.
  *  @param out   Receives one value per output.
  *  @return WRC_OK (0), or a combination of WRC_FLAG_CLAMPED and WRC_FLAG_STATUS, or a negative

@@ -28,11 +28,6 @@ struct WheelRailOptions {
   int max_fz_iterations = 100;
   /// Keep the grids and fields of each patch in the result (for `wrc solve --out`).
   bool keep_fields = false;
-  /// Largest vertical interpenetration of the undeformed surfaces accepted, mm. Elastic wheel–
-  /// rail contact has approaches of ~0.01–0.2 mm (0.1 mm at 300 kN on the Manchester pair);
-  /// more than 1 mm means a pose or placement error (a wheel sunk into the rail), which would
-  /// otherwise produce meganewton forces and grids too large to solve. Bad input, not a result.
-  double max_interpenetration = 1.0;
   /// Largest potential contact area of one patch, in elements: a guard against grids that
   /// cannot be solved in reasonable time (the tangential solver's cost grows with the square
   /// of the contact size). 200 000 elements is 40 × 40 mm at 0.1 mm.
@@ -102,12 +97,18 @@ struct WheelRailResult {
   bool has_force_location = false;
   double contact_y = 0.0;      ///< Rail profile y of force_location_T, mm (SPEC §4.2).
   double contact_angle = 0.0;  ///< Rail inclination there, track frame, rad.
+  /// Where the state is extreme but solved: what of the model's assumptions it strains (e.g. a
+  /// patch too curved for the half-space influence coefficients). Empty for ordinary states.
+  std::vector<std::string> warnings;
 };
 
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
 /// patches and solves them; with `state.fz` it finds the wheelset height z that gives that
 /// vertical force on the rail. Throws InputError for bad input (unreadable profiles, a pose
-/// that puts the wheel outside the rail profile); no contact is a status, not an error.
+/// that puts the wheel outside the rail profile, a patch too large to solve, an fz that no
+/// solvable height carries); no contact is a status, not an error. The depth of the
+/// interpenetration is not bounded: deep flange contact is solved, with `warnings` where the
+/// contact reaches an end of a profile or strains the half-space model.
 WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options = {});
 
 }  // namespace wrc

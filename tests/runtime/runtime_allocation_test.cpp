@@ -196,14 +196,18 @@ TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
 
 // The cubic node data are built when a handle is switched to cubic mode (that call may allocate,
 // as documented in runtime.h); from then on cubic evaluation allocates nothing, on every path
-// (values, derivatives, clamped points, a failed node stored as NaN giving WRC_ERR_NO_DATA, NaN
-// input), and switching modes back and forth reuses the data.
+// (values, derivatives, clamped points, a cell with a failed node stored as NaN taking the
+// valid-corner fallback, a cell whose nodes all failed giving WRC_ERR_NO_DATA, NaN input), and
+// switching modes back and forth reuses the data.
 TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
   wrc::test::ScratchFile scratch("allocation-switch");
   wrc::test::TableContent content;
   content.axes = wrc::test::WheelsetAxes(21);
   content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
-  const auto failed = [](const std::vector<double>& x) { return x[0] == 5.0 && x[3] == 0.0; };
+  // One failed node, and every node at y >= 9: the cells beyond y = 9 have no valid corner.
+  const auto failed = [](const std::vector<double>& x) {
+    return (x[0] == 5.0 && x[3] == 0.0) || x[0] >= 9.0;
+  };
   content.function = [&](int k, const std::vector<double>& x) {
     if (failed(x)) return std::nan("");
     return std::sin(0.3 * x[0] + k) + 100.0 * x[1] + std::cos(300.0 * x[3]) * x[2];
@@ -220,7 +224,8 @@ TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
     points.push_back(0.01 * unit(random));
     points.push_back(i % 50 == 0 ? std::nan("") : 0.01 * unit(random));
   }
-  points.insert(points.end(), {5.0, 0.0, 0.0, 0.001});  // In a cell of the failed node.
+  points.insert(points.end(), {5.0, 0.0, 0.0, 0.001});  // Next to the failed node: fallback.
+  points.insert(points.end(), {9.5, 0.0, 0.0, 0.001});  // In a cell that failed entirely.
   std::vector<double> out(6);
   std::vector<double> d_out(6 * 4);
   // Evaluates every point with and without derivatives; returns the allocations made and
@@ -240,7 +245,7 @@ TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
   int errors = 0;
   EXPECT_EQ(evaluate_all(table, &errors), 0);  // Linear first.
   const int linear_errors = errors;
-  EXPECT_GE(errors, 2 * 10 + 2);  // NaN inputs; points in cells of the failed node.
+  EXPECT_GE(errors, 2 * 10 + 2);  // NaN inputs; points in cells that failed entirely.
   ASSERT_EQ(wrc_table_set_interpolation(table, WRC_INTERP_CUBIC), 0);  // Builds: may allocate.
   errors = 0;
   EXPECT_EQ(evaluate_all(table, &errors), 0);

@@ -456,17 +456,18 @@ TEST(RuntimeInterpolation, PointsNextToFailedNodesAreFlagged) {
   EXPECT_EQ(flags(cubic, 0, 3), 0);
 }
 
-TEST(RuntimeInterpolation, NanAtFailedNodesGivesNoDataNotNan) {
-  // A failed node (status 3) stored as NaN. Cells touching it cannot be interpolated:
-  // WRC_ERR_NO_DATA. One cell further away, both modes return finite values (cubic slope
-  // windows skip the NaN node), flagged because of the failed node.
+// A failed node (status 3) stored as NaN in a table of linear data. In the cells around it the
+// valid corners decide (their multilinear weights renormalised), in both modes, flagged; one
+// cell further away both modes interpolate as usual.
+TEST(RuntimeInterpolation, NextToAFailedNodeTheValidCornersDecide) {
   ScratchFile scratch("nan-node");
   TableContent content;
   content.axes = {{"y", Linspace(-10, 10, 21)}, {"spin", Linspace(-0.01, 0.01, 11)}};
   content.outputs = {"fx", "fz"};
   auto failed = [](const std::vector<double>& x) { return x[0] == 4.0 && x[1] == 0.0; };
+  auto f = [](int k, double y, double spin) { return y * (k + 1) + 100.0 * spin; };
   content.function = [&](int k, const std::vector<double>& x) {
-    return failed(x) ? std::numeric_limits<double>::quiet_NaN() : x[0] * (k + 1) + 100.0 * x[1];
+    return failed(x) ? std::numeric_limits<double>::quiet_NaN() : f(k, x[0], x[1]);
   };
   content.status = [&](const std::vector<double>& x) -> std::int8_t { return failed(x) ? 3 : 0; };
   wrc::test::WriteTable(scratch.path(), content);
@@ -475,18 +476,170 @@ TEST(RuntimeInterpolation, NanAtFailedNodesGivesNoDataNotNan) {
     table.set_interpolation(mode);
     double out[2];
     double d_out[4];
+    // The middle of the cell y in [3, 4], spin in [0, 0.002]: the three valid corners weigh
+    // 1/4 each, renormalised to 1/3.
     const double touching[2] = {3.5, 0.001};
-    EXPECT_EQ(table.try_eval(touching, out, d_out), WRC_ERR_NO_DATA);
-    EXPECT_NE(std::string(wrc_last_error()).find("no finite value"), std::string::npos);
+    EXPECT_EQ(table.try_eval(touching, out, d_out), WRC_FLAG_STATUS);
+    for (int k = 0; k < 2; ++k) {
+      const double mean = (f(k, 3.0, 0.0) + f(k, 3.0, 0.002) + f(k, 4.0, 0.002)) / 3.0;
+      EXPECT_NEAR(out[k], mean, 1e-12) << "output " << k;
+    }
+    // Derivatives: those of the function returned, against central differences.
+    constexpr double kStep = 1e-7;  // well inside the cell; the error is O(step²) ~ 1e-14
+    double plus[2], minus[2];
+    for (int a = 0; a < 2; ++a) {
+      const double h = kStep * (a == 0 ? 1.0 : 0.002);
+      double p[2] = {touching[0], touching[1]}, m[2] = {touching[0], touching[1]};
+      p[a] += h;
+      m[a] -= h;
+      table.try_eval(p, plus);
+      table.try_eval(m, minus);
+      for (int k = 0; k < 2; ++k) {
+        EXPECT_NEAR(d_out[k * 2 + a], (plus[k] - minus[k]) / (2.0 * h),
+                    1e-6 * std::fabs(d_out[k * 2 + a]) + 1e-6)
+            << "output " << k << " axis " << a;
+      }
+    }
+    // A valid node next to the failed one keeps its value exactly.
+    const double valid_node[2] = {3.0, 0.0};
+    EXPECT_EQ(table.try_eval(valid_node, out), WRC_FLAG_STATUS);
+    EXPECT_EQ(out[0], f(0, 3.0, 0.0));
+    // At the failed node itself, where only the failed corner has weight, the nearest valid
+    // corners decide: a finite value between theirs.
+    const double at_failed[2] = {4.0, 0.0};
+    EXPECT_EQ(table.try_eval(at_failed, out), WRC_FLAG_STATUS);
+    EXPECT_GE(out[0], std::min(f(0, 5.0, 0.0), f(0, 4.0, 0.002)));
+    EXPECT_LE(out[0], std::max(f(0, 5.0, 0.0), f(0, 4.0, 0.002)));
     const double next_cell[2] = {2.5, 0.001};
     EXPECT_EQ(table.try_eval(next_cell, out, d_out),
               WRC_FLAG_STATUS * (mode == Interpolation::kCubic));
-    EXPECT_TRUE(std::isfinite(out[0]) && std::isfinite(out[1]));
     for (double d : d_out) EXPECT_TRUE(std::isfinite(d));
     // Linear data next to the gap: the cubic windows shrink but stay exact for linear data.
     EXPECT_NEAR(out[0], 2.5 + 0.1, 1e-12);
     EXPECT_NEAR(out[1], 5.0 + 0.1, 1e-12);
   }
+}
+
+// A cell whose every node failed has no data: WRC_ERR_NO_DATA, and wrc_last_error() says so,
+// in both modes; the outputs are NaN there, not stale values.
+TEST(RuntimeInterpolation, ACellWhoseNodesAllFailedIsNoData) {
+  ScratchFile scratch("failed-cell");
+  TableContent content;
+  content.axes = {{"y", Linspace(0, 10, 11)}, {"spin", Linspace(-0.01, 0.01, 5)}};
+  content.outputs = {"fx"};
+  auto failed = [](const std::vector<double>& x) { return x[0] >= 7.0 && x[0] <= 8.0; };
+  content.function = [&](int, const std::vector<double>& x) {
+    return failed(x) ? std::numeric_limits<double>::quiet_NaN() : x[0];
+  };
+  content.status = [&](const std::vector<double>& x) -> std::int8_t { return failed(x) ? 3 : 0; };
+  wrc::test::WriteTable(scratch.path(), content);
+  for (Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic}) {
+    Table table(scratch.path());
+    table.set_interpolation(mode);
+    double out[1];
+    const double inside[2] = {7.5, 0.003};
+    EXPECT_EQ(table.try_eval(inside, out), WRC_ERR_NO_DATA);
+    EXPECT_NE(std::string(wrc_last_error()).find("every node of the cell failed"),
+              std::string::npos)
+        << wrc_last_error();
+    EXPECT_NE(std::string(wrc_last_error()).find("'fx'"), std::string::npos);
+    EXPECT_TRUE(std::isnan(out[0]));
+    // The cells either side have valid nodes on their far face: those decide.
+    const double below[2] = {6.5, 0.003};
+    EXPECT_EQ(table.try_eval(below, out), WRC_FLAG_STATUS);
+    EXPECT_DOUBLE_EQ(out[0], 6.0);
+    const double above[2] = {8.25, 0.003};
+    EXPECT_EQ(table.try_eval(above, out), WRC_FLAG_STATUS);
+    EXPECT_DOUBLE_EQ(out[0], 9.0);
+  }
+}
+
+// Nodes failed at random (fixed seed, 15 %) in a 3-axis table: no finite point inside the table
+// gives NaN. Where a cell has a valid corner the result is finite, flagged, and (linear
+// fallback: a convex combination) between the smallest and largest valid corner value; in
+// cubic mode such cells give the same fallback. Only cells without any valid corner are
+// WRC_ERR_NO_DATA.
+TEST(RuntimeInterpolation, RandomlyFailedNodesNeverGiveNan) {
+  ScratchFile scratch("random-holes");
+  TableContent content;
+  const std::vector<double> ys = Linspace(8, 16, 9), rolls = Linspace(-0.002, 0.002, 3),
+                            yaws = Linspace(-0.005, 0.005, 5);
+  content.axes = {{"y", ys}, {"roll", rolls}, {"yaw", yaws}};
+  content.outputs = {"fy", "fz"};
+  std::mt19937 random(2026);
+  std::bernoulli_distribution fails(0.15);
+  std::vector<bool> failed_node(ys.size() * rolls.size() * yaws.size());
+  for (std::size_t n = 0; n < failed_node.size(); ++n) failed_node[n] = fails(random);
+  auto index = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return (i * rolls.size() + j) * yaws.size() + k;
+  };
+  auto node_of = [&](const std::vector<double>& x) {
+    auto at = [](const std::vector<double>& v, double c) {
+      return static_cast<std::size_t>(std::find(v.begin(), v.end(), c) - v.begin());
+    };
+    return index(at(ys, x[0]), at(rolls, x[1]), at(yaws, x[2]));
+  };
+  auto f = [](int k, const std::vector<double>& x) {
+    return (k + 1) * 1e4 * std::sin(x[0]) + 1e6 * x[1] - 3e5 * x[2];
+  };
+  content.function = [&](int k, const std::vector<double>& x) {
+    return failed_node[node_of(x)] ? std::numeric_limits<double>::quiet_NaN() : f(k, x);
+  };
+  content.status = [&](const std::vector<double>& x) -> std::int8_t {
+    return failed_node[node_of(x)] ? 3 : 0;
+  };
+  wrc::test::WriteTable(scratch.path(), content);
+  Table linear(scratch.path());
+  Table cubic(scratch.path());
+  cubic.set_interpolation(Interpolation::kCubic);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int fallbacks = 0, no_data = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const double point[3] = {8.0 + 8.0 * unit(random), -0.002 + 0.004 * unit(random),
+                             -0.005 + 0.01 * unit(random)};
+    // The cell's corners, found independently of the runtime.
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(point[0] - 8.0), 7);
+    const std::size_t j = point[1] < 0.0 ? 0 : 1;
+    const std::size_t k =
+        std::min<std::size_t>(static_cast<std::size_t>((point[2] + 0.005) / 0.0025), 3);
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    int valid = 0;
+    for (int c = 0; c < 8; ++c) {
+      const std::size_t ci = i + (c & 1), cj = j + (c >> 1 & 1), ck = k + (c >> 2 & 1);
+      if (failed_node[index(ci, cj, ck)]) continue;
+      ++valid;
+      for (int o = 0; o < 2; ++o) {
+        const double v = f(o, {ys[ci], rolls[cj], yaws[ck]});
+        lo[o] = std::min(lo[o], v);
+        hi[o] = std::max(hi[o], v);
+      }
+    }
+    double out[2], out_cubic[2], d_out[6];
+    const int code = linear.try_eval(point, out, d_out);
+    const int code_cubic = cubic.try_eval(point, out_cubic);
+    if (valid == 0) {
+      ++no_data;
+      EXPECT_EQ(code, WRC_ERR_NO_DATA);
+      EXPECT_EQ(code_cubic, WRC_ERR_NO_DATA);
+      continue;
+    }
+    ASSERT_GE(code, 0) << wrc_last_error();
+    ASSERT_GE(code_cubic, 0) << wrc_last_error();
+    for (int o = 0; o < 2; ++o) {
+      ASSERT_TRUE(std::isfinite(out[o]) && std::isfinite(out_cubic[o]));
+      for (int a = 0; a < 3; ++a) ASSERT_TRUE(std::isfinite(d_out[o * 3 + a]));
+    }
+    if (valid == 8) continue;
+    ++fallbacks;
+    EXPECT_EQ(code & WRC_FLAG_STATUS, WRC_FLAG_STATUS);
+    for (int o = 0; o < 2; ++o) {
+      // Round-off of the weighted mean: 1e-12 of the values' size (1e4).
+      EXPECT_GE(out[o], lo[o] - 1e-8);
+      EXPECT_LE(out[o], hi[o] + 1e-8);
+      EXPECT_EQ(out_cubic[o], out[o]);
+    }
+  }
+  EXPECT_GT(fallbacks, 1000);  // the test exercised the fallback
 }
 
 TEST(RuntimeInterpolation, SingleNodeAxesAreConstantDirections) {

@@ -142,6 +142,7 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
                                                      {"y_r", r.contact_y},
                                                      {"contact_angle", r.contact_angle}}
                                               : json(nullptr)},
+      {"warnings", r.warnings},
       {"iterations", {{"fz", r.fz_iterations}}},
       {"timing_s",
        {{"total", seconds},
@@ -222,6 +223,11 @@ void AddSolveCommand(CLI::App& app, int* exit_code) {
         std::cout << j.dump(1) << '\n';
       } else {
         PrintHuman(j);
+        if (j.contains("warnings")) {
+          for (const json& w : j["warnings"]) {
+            std::cerr << "wrc solve: warning: " << w.get<std::string>() << '\n';
+          }
+        }
       }
       *exit_code = ExitCodeFor(status);
       if (status == SolverStatus::kNotConverged) {

@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kStep = 0.05;  // mm, the solver's search step
-constexpr double kReach = 1.0;  // mm, the solver's max_interpenetration
+constexpr double kReach = 1.0;  // mm, the solver's first search reach
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Pair {

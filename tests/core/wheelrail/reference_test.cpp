@@ -18,9 +18,8 @@ using nlohmann::json;
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::vector<fs::path> Cases(const std::string& group) {
+std::vector<fs::path> CasesIn(const fs::path& dir) {
   std::vector<fs::path> cases;
-  const fs::path dir = fs::path(WRC_SHARED_DIR) / "reference" / "cases" / group;
   if (fs::exists(dir)) {
     for (const auto& e : fs::directory_iterator(dir)) {
       if (e.path().extension() == ".toml") cases.push_back(e.path());
@@ -28,6 +27,15 @@ std::vector<fs::path> Cases(const std::string& group) {
   }
   std::sort(cases.begin(), cases.end());
   return cases;
+}
+
+std::vector<fs::path> Cases(const std::string& group) {
+  return CasesIn(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / group);
+}
+
+// Deep flange contact of the heavy-haul pair at heavy loads, kept apart from the case groups.
+std::vector<fs::path> DeepFlangeCases() {
+  return CasesIn(fs::path(WRC_SHARED_DIR) / "reference" / "deep_flange");
 }
 
 json Reference(const fs::path& toml) {
@@ -77,6 +85,23 @@ TEST_P(CurvedReference, MatchesContact) {
   }
 }
 
+class DeepFlangeReference : public testing::TestWithParam<fs::path> {};
+
+// Flange contact at 76°, L/V 3-4, the wheelset rising in two of the states: status ok, total
+// forces and per-patch fn, fx, fs within 1 % of the vertical load, as for the case groups.
+TEST_P(DeepFlangeReference, MatchesContact) {
+  const json ref = Reference(GetParam());
+  const WheelRailResult r = SolveWheelRail(LoadCase(GetParam()));
+  ExpectTotals(r, ref, 0.01);
+  const double load = std::fabs(ref["rail_forces_track"]["fz"].get<double>());
+  for (std::size_t k = 0; k < r.patches.size() && k < ref["patches"].size(); ++k) {
+    const json& rp = ref["patches"][k];
+    EXPECT_NEAR(r.patches[k].fn, rp["fn"].get<double>(), 0.01 * load) << "patch " << k;
+    EXPECT_NEAR(r.patches[k].fx, rp["fx"].get<double>(), 0.01 * load) << "patch " << k;
+    EXPECT_NEAR(r.patches[k].fs, rp["fs"].get<double>(), 0.01 * load) << "patch " << k;
+  }
+}
+
 std::string Name(const testing::TestParamInfo<fs::path>& info) {
   std::string s = info.param.stem().string();
   for (char& ch : s) {
@@ -91,6 +116,8 @@ INSTANTIATE_TEST_SUITE_P(VarFric, CurvedReference, testing::ValuesIn(Cases("mben
                          Name);
 INSTANTIATE_TEST_SUITE_P(Groove, CurvedReference, testing::ValuesIn(Cases("groove")), Name);
 INSTANTIATE_TEST_SUITE_P(HeavyHaul, CurvedReference, testing::ValuesIn(Cases("heavy_haul")), Name);
+INSTANTIATE_TEST_SUITE_P(HeavyHaul, DeepFlangeReference, testing::ValuesIn(DeepFlangeCases()),
+                         Name);
 
 TEST(WheelRailReference, AllGroupsPresent) {
   EXPECT_EQ(Cases("mbench_planar").size(), 6u);
@@ -98,6 +125,7 @@ TEST(WheelRailReference, AllGroupsPresent) {
   EXPECT_EQ(Cases("mbench_varfric").size(), 2u);
   EXPECT_EQ(Cases("groove").size(), 3u);
   EXPECT_EQ(Cases("heavy_haul").size(), 3u);
+  EXPECT_EQ(DeepFlangeCases().size(), 3u);
 }
 
 }  // namespace
