@@ -43,6 +43,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDefaultMinStepFraction = 1.0 / 512.0;
 // Points drawn over the whole state space after the last pass to estimate the final error.
 constexpr int kCheckPoints = 400;
+// The score of an interval whose midpoint fails to solve while its ends solve (see
+// ScoreIntervals), in units of the target.
+constexpr double kFailedMidpointScore = 1.5;
 // Messages to other ranks between passes.
 constexpr int kTagAxes = 20;
 enum class PassKind : char { kGrid = 'g', kFinal = 'f', kStop = 's' };
@@ -217,14 +220,6 @@ std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity,
 
 // ---- samples --------------------------------------------------------------------------------
 
-// An exact solve at the midpoint of interval `interval` of axis `axis`, the other coordinates
-// at the nodes `nodes` (nodes[axis] is the interval's lower node).
-struct Sample {
-  std::size_t axis = 0, interval = 0;
-  std::vector<std::size_t> nodes;
-  std::vector<double> point;
-};
-
 double MinStep(const RefineSettings& settings, const SceneAxis& axis) {
   const auto it = settings.min_step.find(axis.name);
   if (it != settings.min_step.end()) return it->second;
@@ -236,15 +231,15 @@ bool Splittable(const RefineSettings& settings, const SceneAxis& axis, std::size
   return width >= 2.0 * MinStep(settings, axis);
 }
 
-std::vector<Sample> DrawSamples(const Axes& axes, const RefineSettings& settings, int pass) {
-  std::vector<Sample> samples;
+std::vector<RefineSample> DrawSamples(const Axes& axes, const RefineSettings& settings, int pass) {
+  std::vector<RefineSample> samples;
   for (std::size_t k = 0; k < axes.size(); ++k) {
     const std::vector<double>& nodes = axes[k].values;
     for (std::size_t j = 0; j + 1 < nodes.size(); ++j) {
       if (!Splittable(settings, axes[k], j)) continue;
       SplitMix rng(Mix(Mix(settings.seed, static_cast<std::uint64_t>(pass)), k * 1'000'003 + j));
       for (int s = 0; s < settings.samples; ++s) {
-        Sample sample;
+        RefineSample sample;
         sample.axis = k;
         sample.interval = j;
         for (std::size_t a = 0; a < axes.size(); ++a) {
@@ -420,7 +415,7 @@ struct IntervalScore {
 // Midpoint errors of the linear interpolant (the mean of the interval's end values), per
 // axis and interval.
 std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const TableData& data,
-                                                       const std::vector<Sample>& samples,
+                                                       const std::vector<RefineSample>& samples,
                                                        const std::vector<PointResult>& results,
                                                        const ErrorModel& model) {
   std::vector<std::vector<IntervalScore>> scores(axes.size());
@@ -429,12 +424,21 @@ std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const T
   }
   const std::vector<std::size_t> stride = Strides(axes);
   for (std::size_t s = 0; s < samples.size(); ++s) {
-    const Sample& sample = samples[s];
+    const RefineSample& sample = samples[s];
     std::uint64_t lower = 0;
     for (std::size_t a = 0; a < axes.size(); ++a) lower += sample.nodes[a] * stride[a];
     const std::uint64_t upper = lower + stride[sample.axis];
     const PointResult& mid = results[s];
-    if (!Usable(mid.status) || data.status[lower] > 1 || data.status[upper] > 1) continue;
+    if (data.status[lower] > 1 || data.status[upper] > 1) continue;
+    IntervalScore& score = scores[sample.axis][sample.interval];
+    if (!Usable(mid.status)) {
+      // Both ends solve, the middle does not: the behaviour changes in between, which a
+      // finer grid resolves (or bounds, at min_step). Above target, but after every interval
+      // with a measured error above 1.5 × target.
+      score.max_error = std::max(score.max_error, kFailedMidpointScore);
+      ++score.samples;
+      continue;
+    }
     const PointResult left = ResultAt(data, lower), right = ResultAt(data, upper);
     std::vector<double> estimate(left.values.size());
     for (std::size_t k = 0; k < estimate.size(); ++k) {
@@ -443,7 +447,6 @@ std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const T
     const double load = LocalLoad(model, sample.point, {&left.values, &right.values, &mid.values});
     const double e = NormalisedError(model, load, mid.values, estimate);
     if (std::isnan(e)) continue;
-    IntervalScore& score = scores[sample.axis][sample.interval];
     score.max_error = std::max(score.max_error, e);
     ++score.samples;
   }
@@ -579,7 +582,7 @@ TableData LoadPassJournal(const fs::path& path, std::size_t points, std::size_t 
 class KnownPoints {
  public:
   KnownPoints(const Axes& old_axes, TableData old_data, const Axes& new_axes,
-              const std::vector<Sample>& samples, std::vector<PointResult> sample_results)
+              const std::vector<RefineSample>& samples, std::vector<PointResult> sample_results)
       : old_data_(std::move(old_data)),
         old_stride_(Strides(old_axes)),
         new_axes_(new_axes),
@@ -663,7 +666,7 @@ class Refinement {
   void Say(const char* format, ...) const __attribute__((format(printf, 2, 3)));
   std::vector<Axes> StartOrResume();
   GenerateSummary RunPass(int pass, const Axes& axes, const KnownPoints* known, TableData* data);
-  std::optional<SampleRun> RunSamples(int pass, const std::vector<Sample>& samples);
+  std::optional<SampleRun> RunSamples(int pass, const std::vector<RefineSample>& samples);
   ErrorEstimate FinalCheck(const Axes& axes, const TableData& data);
   GenerateSummary WriteFinal(const Axes& axes, const TableData& data, const ErrorEstimate& check,
                              const std::string& stop_reason);
@@ -740,10 +743,10 @@ GenerateSummary Refinement::RunPass(int pass, const Axes& axes, const KnownPoint
   return summary;
 }
 
-std::optional<SampleRun> Refinement::RunSamples(int pass, const std::vector<Sample>& samples) {
+std::optional<SampleRun> Refinement::RunSamples(int pass, const std::vector<RefineSample>& samples) {
   std::vector<std::vector<double>> points;
   std::vector<double> z_guess;
-  for (const Sample& sample : samples) {
+  for (const RefineSample& sample : samples) {
     points.push_back(sample.point);
     // Cold: where fz(z) has several roots (the flange climbing), a warm start from a distant
     // node may find another root than `wrc verify` and a simulator's own solve would.
@@ -855,7 +858,7 @@ GenerateSummary Refinement::RunRoot() {
     const Axes& previous = passes[static_cast<std::size_t>(pass - 1)];
     TableData old =
         LoadPassJournal(PassJournal(work_, pass - 1), PointCount(previous), scene_.outputs.size());
-    const std::vector<Sample> samples = DrawSamples(previous, settings_, pass - 1);
+    const std::vector<RefineSample> samples = DrawSamples(previous, settings_, pass - 1);
     std::optional<SampleRun> run = RunSamples(pass - 1, samples);
     if (!run) return Interrupted({});
     known.emplace(previous, std::move(old), passes.back(), samples, std::move(run->results));
@@ -876,7 +879,7 @@ GenerateSummary Refinement::RunRoot() {
     record.new_points = grid.computed;
     std::string stop_reason;
     Axes next = axes;
-    std::vector<Sample> samples;
+    std::vector<RefineSample> samples;
     std::optional<SampleRun> sample_run;
     if (pass >= settings_.max_passes) {
       stop_reason = "pass limit (" + std::to_string(settings_.max_passes) + " passes)";
@@ -884,22 +887,18 @@ GenerateSummary Refinement::RunRoot() {
       samples = DrawSamples(axes, settings_, pass);
       sample_run = RunSamples(pass, samples);
       if (!sample_run) return Interrupted(grid);
-      const auto scores = ScoreIntervals(axes, data, samples, sample_run->results, model_);
-      for (const auto& axis_scores : scores) {
-        for (const IntervalScore& s : axis_scores) {
-          record.worst = std::max(record.worst, s.max_error);
-          record.above_target += s.max_error > 1.0 ? 1 : 0;
-        }
-      }
-      std::size_t refused = 0;
-      next = SplitIntervals(axes, scores, settings_.max_points, &refused);
+      const RefineDecision decision =
+          DecideRefinement(scene_, axes, data, samples, sample_run->results);
+      record.worst = decision.worst;
+      record.above_target = decision.above_target;
+      next = decision.next;
       if (record.above_target == 0) {
         stop_reason = "target met: every sampled interval midpoint within the target";
-      } else if (next[0].values.size() == axes[0].values.size() &&
-                 PointCount(next) == PointCount(axes)) {
-        stop_reason = refused > 0
-                          ? "point budget (" + std::to_string(settings_.max_points) + " points)"
-                          : "smallest steps reached where the error is above target";
+      } else if (PointCount(next) == PointCount(axes)) {
+        stop_reason = decision.refused > 0 ? "point budget (" +
+                                                 std::to_string(settings_.max_points) + " points)"
+                                           : "smallest steps reached where the error is above "
+                                             "target";
       }
     }
     record.samples = samples.size();
@@ -982,6 +981,27 @@ double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& da
     sum += weight * data.values[k][flat];
   }
   return sum;
+}
+
+std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
+                                            const RefineSettings& settings, int pass) {
+  return DrawSamples(axes, settings, pass);
+}
+
+RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                const TableData& data, const std::vector<RefineSample>& samples,
+                                const std::vector<PointResult>& results) {
+  const RefineSettings& settings = *scene.refine;
+  const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
+  RefineDecision decision;
+  for (const auto& axis_scores : scores) {
+    for (const IntervalScore& s : axis_scores) {
+      decision.worst = std::max(decision.worst, s.max_error);
+      decision.above_target += s.max_error > 1.0 ? 1 : 0;
+    }
+  }
+  decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);
+  return decision;
 }
 
 GenerateSummary RefineTable(const Scene& scene, const GenerateOptions& options, Cluster* cluster) {

@@ -51,6 +51,31 @@ GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options,
 /// nodes and sends every pass's axes to the other ranks, which solve their share of each grid.
 GenerateSummary RefineTable(const Scene& scene, const GenerateOptions& options, Cluster* cluster);
 
+/// An exact solve at the midpoint of interval `interval` of axis `axis`, the other coordinates
+/// at the nodes `nodes` (nodes[axis] is the interval's lower node).
+struct RefineSample {
+  std::size_t axis = 0, interval = 0;
+  std::vector<std::size_t> nodes;
+  std::vector<double> point;
+};
+
+/// The midpoint samples of one pass: settings.samples per interval that may still be split,
+/// the other coordinates drawn uniformly over their ranges (seeded by settings.seed and the
+/// pass) and moved to the nearest node.
+std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
+                                            const RefineSettings& settings, int pass);
+
+/// What one pass decides from its grid and its samples' exact results.
+struct RefineDecision {
+  std::vector<SceneAxis> next;    ///< The axes of the next pass (equal: stop).
+  std::size_t above_target = 0;   ///< Intervals whose sampled midpoint error exceeds the target.
+  std::size_t refused = 0;        ///< Of those, intervals left unsplit by the point budget.
+  double worst = 0.0;             ///< Largest sampled midpoint error, in units of the target.
+};
+RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                const TableData& data, const std::vector<RefineSample>& samples,
+                                const std::vector<PointResult>& results);
+
 /// Multilinear interpolation of output `k` of a finished grid at `point` (inside the axes'
 /// ranges; clamped otherwise). NaN when a corner with non-zero weight is NaN.
 double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& data, std::size_t k,

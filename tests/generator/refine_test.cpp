@@ -1,0 +1,202 @@
+// Error-driven node placement: the split decisions on a synthetic function with a kink, a
+// small real scene refined against exact solves, and resumed refinements equal to
+// uninterrupted ones to the bit.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "generator/refine.h"
+#include "generator/table_data.h"
+#include "tests/generator/generator_test_util.h"
+#include "wrc/generator.h"
+#include "wrc/runtime.hpp"
+#include "wrc/scene.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc::test {
+namespace {
+
+// Lateral force saturating at |yaw| = 1.5 mrad (a kink, as creep saturation makes one), plus
+// terms linear in y that multilinear interpolation reproduces exactly.
+constexpr double kKnee = 0.0015;
+std::vector<double> Synthetic(const std::vector<double>& p) {
+  const double y = p[0], yaw = p[1];
+  const double fy = 3000.0 * std::clamp(yaw / kKnee, -1.0, 1.0) * (1.0 + 0.02 * y);
+  return {200.0 * y, fy, 10000.0};
+}
+
+Scene SyntheticScene(const fs::path& dir) {
+  const std::string table =
+      "axes = [\"y\", \"yaw\"]\ny = {from = 0.0, to = 5.0, count = 3}\n"
+      "yaw = {from = -0.01, to = 0.01, count = 5}\noutputs = [\"fx\", \"fy\", \"fz\"]\n"
+      "[table.refine]\ntarget = 0.005\nsamples = 8\nmax_points = 5000\n";
+  return ParseScene(TinyScene(table), dir, "synthetic.toml");
+}
+
+gen::TableData Fill(const std::vector<SceneAxis>& axes) {
+  const std::size_t ny = axes[0].values.size(), nyaw = axes[1].values.size();
+  gen::TableData data(ny * nyaw, 3);
+  for (std::size_t i = 0; i < ny; ++i) {
+    for (std::size_t j = 0; j < nyaw; ++j) {
+      PointResult r;
+      r.status = PointStatus::kOk;
+      r.values = Synthetic({axes[0].values[i], axes[1].values[j]});
+      data.Store(i * nyaw + j, r);
+    }
+  }
+  return data;
+}
+
+// Largest and 95th-percentile |fy error| at random points (fixed seed).
+std::pair<double, double> FyErrors(const std::vector<SceneAxis>& axes, const gen::TableData& data) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> y(0.0, 5.0), yaw(-0.01, 0.01);
+  std::vector<double> errors;
+  for (int k = 0; k < 2000; ++k) {
+    const std::vector<double> p = {y(rng), yaw(rng)};
+    errors.push_back(std::fabs(gen::InterpolateLinear(axes, data, 1, p) - Synthetic(p)[1]));
+  }
+  std::sort(errors.begin(), errors.end());
+  return {errors.back(), errors[errors.size() * 95 / 100]};
+}
+
+TEST(Refine, SplitsWhereTheKinkIsAndNowhereElse) {
+  ScratchDir dir("refine_synthetic");
+  const Scene scene = SyntheticScene(dir.path());
+  std::vector<SceneAxis> axes = scene.axes;
+  const auto [start_max, start_p95] = FyErrors(axes, Fill(axes));
+  for (int pass = 0; pass < 12; ++pass) {
+    const gen::TableData data = Fill(axes);
+    const std::vector<gen::RefineSample> samples =
+        gen::DrawRefineSamples(axes, *scene.refine, pass);
+    std::vector<PointResult> results;
+    for (const gen::RefineSample& s : samples) {
+      PointResult r;
+      r.status = PointStatus::kOk;
+      r.values = Synthetic(s.point);
+      results.push_back(r);
+    }
+    const gen::RefineDecision decision =
+        gen::DecideRefinement(scene, axes, data, samples, results);
+    if (decision.next[1].values.size() == axes[1].values.size() &&
+        decision.next[0].values.size() == axes[0].values.size()) {
+      break;
+    }
+    axes = decision.next;
+  }
+  const auto [end_max, end_p95] = FyErrors(axes, Fill(axes));
+  // The target is 0.5 % of the 10 kN load: 50 N at interval midpoints. Away from midpoints
+  // the error is smaller, so p95 stays under it; the largest error sits in the two cells with
+  // the kink, whose sides are at most min_step·2 wide (20/512 mrad... here 0.02/512 rad).
+  EXPECT_LT(end_p95, 50.0) << "start p95 " << start_p95;
+  EXPECT_LT(end_max, 50.0);
+  EXPECT_GT(start_max, 20.0 * end_max);
+  // fy and fx are linear in y at fixed yaw, so y keeps its three nodes.
+  EXPECT_EQ(axes[0].values.size(), 3u);
+  // The smallest yaw steps lie next to the knees, the largest where fy is flat.
+  const std::vector<double>& yaw = axes[1].values;
+  double smallest = 1.0, at = 0.0, largest = 0.0;
+  for (std::size_t i = 1; i < yaw.size(); ++i) {
+    const double h = yaw[i] - yaw[i - 1];
+    if (h < smallest) {
+      smallest = h;
+      at = 0.5 * (yaw[i] + yaw[i - 1]);
+    }
+    largest = std::max(largest, h);
+  }
+  EXPECT_NEAR(std::fabs(at), kKnee, 4.0 * smallest);
+  EXPECT_GE(largest, 0.005 - 1e-12);  // the flat outer intervals are never split
+}
+
+// A 1-D refinement of the Manchester pair across the tread-to-flange transition.
+std::string RealTable(const std::string& refine) {
+  return "axes = [\"y\"]\ny = {from = 2.0, to = 8.0, count = 3}\n"
+         "outputs = [\"fx\", \"fy\", \"fz\", \"n_patches\", \"z\"]\n[table.refine]\n" +
+         refine;
+}
+
+GenerateOptions Quiet(const fs::path& output) {
+  GenerateOptions options;
+  options.output = output;
+  options.threads = 2;
+  options.progress = ProgressMode::kOff;
+  return options;
+}
+
+// |fy error| / load at random points against exact solves, through the runtime.
+double MaxRelativeError(const Scene& scene, const fs::path& table_path) {
+  Table table(table_path.string());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> y(2.0, 8.0);
+  double worst = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const double point = y(rng);
+    const WheelRailResult exact = SolveWheelRail(CaseAtPoint(scene, {point}));
+    const std::vector<double> looked_up = table.eval(std::vector<double>{point});
+    worst = std::max(worst, std::fabs(looked_up[1] - exact.force_T(1)) / 10000.0);
+  }
+  return worst;
+}
+
+TEST(Refine, RealSceneGetsCloserToTheSolver) {
+  ScratchDir dir("refine_real");
+  const fs::path coarse_scene = WriteFile(dir / "coarse.toml", TinyScene(RealTable("max_passes = 0\n")));
+  const fs::path fine_scene =
+      WriteFile(dir / "fine.toml", TinyScene(RealTable("target = 0.005\nsamples = 1\n")));
+  const Scene coarse = LoadScene(coarse_scene), fine = LoadScene(fine_scene);
+  ASSERT_TRUE(GenerateTable(coarse, Quiet(dir / "coarse.h5")).complete);
+  const GenerateSummary summary = GenerateTable(fine, Quiet(dir / "fine.h5"));
+  ASSERT_TRUE(summary.complete);
+  EXPECT_GT(summary.axes[0].values.size(), 3u);
+  EXPECT_FALSE(fs::exists(dir / "fine.h5.refine"));  // the work directory is cleaned up
+  const double before = MaxRelativeError(coarse, dir / "coarse.h5");
+  const double after = MaxRelativeError(fine, dir / "fine.h5");
+  EXPECT_LT(after, 0.25 * before) << before << " → " << after;
+  EXPECT_LT(after, 0.02);  // twice the midpoint target: random points are not midpoints
+  // The table says how it was refined.
+  Table table((dir / "fine.h5").string());
+  EXPECT_NE(table.attribute("refine_target").find("\"load_fraction\":0.005"), std::string::npos);
+  EXPECT_NE(table.attribute("refine_stop").find("target met"), std::string::npos);
+}
+
+TEST(Refine, ResumedRunsGiveTheSameBits) {
+  ScratchDir dir("refine_resume");
+  const fs::path scene_path = WriteFile(
+      dir / "scene.toml",
+      TinyScene("axes = [\"yaw\", \"y\"]\nyaw = [0.0, 0.004]\ny = {from = 2.0, to = 8.0, count = "
+                "3}\noutputs = [\"fx\", \"fy\", \"fz\", \"z\"]\n[table.refine]\ntarget = "
+                "0.01\nsamples = 2\nmax_passes = 3\n"));
+  const Scene scene = LoadScene(scene_path);
+  ASSERT_TRUE(GenerateTable(scene, Quiet(dir / "whole.h5")).complete);
+  // Stopped inside grid passes and inside the midpoint solves, then resumed until done.
+  for (std::size_t budget : {5u, 9u, 17u}) {
+    const fs::path output = dir / ("resumed" + std::to_string(budget) + ".h5");
+    GenerateOptions options = Quiet(output);
+    options.max_points = budget;
+    GenerateSummary summary = GenerateTable(scene, options);
+    int runs = 1;
+    while (!summary.complete && runs < 50) {
+      EXPECT_TRUE(summary.interrupted);
+      EXPECT_TRUE(fs::exists(fs::path(output.string() + ".refine")));
+      options.resume = true;
+      summary = GenerateTable(scene, options);
+      ++runs;
+    }
+    ASSERT_TRUE(summary.complete);
+    EXPECT_GT(runs, 2) << "budget " << budget << " should interrupt more than once";
+    ExpectIdenticalTables(dir / "whole.h5", output);
+  }
+  // Without --resume, an interrupted refinement is not thrown away.
+  GenerateOptions options = Quiet(dir / "again.h5");
+  options.max_points = 3;
+  ASSERT_FALSE(GenerateTable(scene, options).complete);
+  options.max_points = 0;
+  EXPECT_THROW(GenerateTable(scene, options), InputError);
+}
+
+}  // namespace
+}  // namespace wrc::test
