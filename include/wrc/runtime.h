@@ -163,6 +163,15 @@ WRC_API const char* wrc_table_axis_unit(const wrc_table* t, int i);
 /** The `unit` attribute of /outputs/<name>, "" when absent; NULL on error. */
 WRC_API const char* wrc_table_output_unit(const wrc_table* t, int i);
 
+/** The table's data as loaded: for each grid node (row-major over the axes, the last axis
+ *  fastest) one value per output, in output order; the product of the axis sizes times
+ *  wrc_table_num_outputs(t) values. NULL for a NULL table. Valid until the table is closed. */
+WRC_API const double* wrc_table_node_values(const wrc_table* t);
+
+/** The /status of each grid node (0 ok, 1 no contact, 2 not converged, 3 error), in the order
+ *  of wrc_table_node_values(). NULL for a NULL table. Valid until the table is closed. */
+WRC_API const signed char* wrc_table_node_status(const wrc_table* t);
+
 /** A string attribute of the file's root group (format, wrc_version, created, scene, …), or
  *  NULL when there is none of that name (wrc_last_error() then says so). */
 WRC_API const char* wrc_table_attribute(const wrc_table* t, const char* name);

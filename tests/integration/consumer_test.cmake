@@ -6,6 +6,8 @@
 #                  (C, CXX or C+CXX) against the package in PACKAGE_DIR (an install prefix,
 #                  or the build tree), linking the VARIANT (static or shared) runtime, in WORK_DIR;
 #                  each executable reads TABLE and checks a value.
+#   MODE=python    installs the python component into PYTHON_PREFIX (emptied first) and has PYTHON
+#                  import the installed module from there and check the same value.
 cmake_minimum_required(VERSION 3.22)
 
 function(run)
@@ -92,10 +94,24 @@ function(check_linkage executable)
   endif()
 endfunction()
 
+function(install_python)
+  file(REMOVE_RECURSE ${PYTHON_PREFIX})
+  run(${CMAKE_COMMAND} --install ${BUILD_DIR} --component python --prefix ${PYTHON_PREFIX})
+  file(GLOB_RECURSE module ${PYTHON_PREFIX}/wrc*.so)
+  if(NOT module)
+    message(FATAL_ERROR "the python component installed no module into ${PYTHON_PREFIX}")
+  endif()
+  get_filename_component(module_dir ${module} DIRECTORY)
+  run(${PYTHON} ${SOURCE_DIR}/../python/check_installed.py ${module_dir} ${TABLE})
+  message(STATUS "${run_output}")
+endfunction()
+
 if(MODE STREQUAL "install")
   install_runtime()
 elseif(MODE STREQUAL "consumer")
   build_consumer()
+elseif(MODE STREQUAL "python")
+  install_python()
 else()
-  message(FATAL_ERROR "MODE must be install or consumer, not '${MODE}'")
+  message(FATAL_ERROR "MODE must be install, consumer or python, not '${MODE}'")
 endif()
