@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -171,9 +172,6 @@ std::shared_ptr<PyWheelset> MakeWheelset(std::shared_ptr<PyTable> left,
 // One state component: a scalar or an array of N values.
 struct Column {
   Doubles values;
-  double At(py::ssize_t i) const {
-    return values.size() == 1 ? values.data()[0] : values.data()[i];
-  }
 };
 
 // The number of states: 1, or the common size of the array arguments.
@@ -189,9 +187,9 @@ py::ssize_t StateCount(const std::vector<Column>& columns) {
 }
 
 py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
-  static const char* const kNames[] = {"y",        "z",       "roll",    "yaw",      "vy",
-                                       "vroll",    "vyaw",    "omega",   "velocity", "fz_left",
-                                       "fz_right", "mu_left", "mu_right"};
+  static constexpr const char* kNames[] = {"y",        "z",       "roll",    "yaw",      "vy",
+                                           "vroll",    "vyaw",    "omega",   "velocity", "fz_left",
+                                           "fz_right", "mu_left", "mu_right"};
   std::vector<Column> columns;
   for (const char* name : kNames) {
     const bool unknown = std::strncmp(name, "fz", 2) == 0 || std::strncmp(name, "mu", 2) == 0;
@@ -215,31 +213,46 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
   Doubles contact_y({n, py::ssize_t{2}}), contact_angle({n, py::ssize_t{2}});
   Doubles total_force({n, py::ssize_t{3}}), total_moment({n, py::ssize_t{3}});
   Ints flags({n, py::ssize_t{2}}), code(n);
+  // Raw pointers, taken while the GIL is held; a size-1 column repeats its value (stride 0).
+  const double* in[std::size(kNames)];
+  py::ssize_t stride[std::size(kNames)];
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    in[c] = columns[c].values.data();
+    stride[c] = columns[c].values.size() == 1 ? 0 : 1;
+  }
+  double* f_out = force.mutable_data();
+  double* m_out = moment.mutable_data();
+  double* y_out = contact_y.mutable_data();
+  double* a_out = contact_angle.mutable_data();
+  double* tf_out = total_force.mutable_data();
+  double* tm_out = total_moment.mutable_data();
+  int* flag_out = flags.mutable_data();
+  int* code_out = code.mutable_data();
   {
     py::gil_scoped_release release;
     for (py::ssize_t i = 0; i < n; ++i) {
+      auto at = [&](int c) { return in[c][i * stride[c]]; };
       wrc_wheelset_state s;
-      s.y = columns[0].At(i), s.z = columns[1].At(i), s.roll = columns[2].At(i);
-      s.yaw = columns[3].At(i), s.vy = columns[4].At(i), s.vroll = columns[5].At(i);
-      s.vyaw = columns[6].At(i), s.omega = columns[7].At(i), s.velocity = columns[8].At(i);
-      s.fz[WRC_LEFT] = columns[9].At(i), s.fz[WRC_RIGHT] = columns[10].At(i);
-      s.mu[WRC_LEFT] = columns[11].At(i), s.mu[WRC_RIGHT] = columns[12].At(i);
+      s.y = at(0), s.z = at(1), s.roll = at(2), s.yaw = at(3), s.vy = at(4), s.vroll = at(5);
+      s.vyaw = at(6), s.omega = at(7), s.velocity = at(8);
+      s.fz[WRC_LEFT] = at(9), s.fz[WRC_RIGHT] = at(10);
+      s.mu[WRC_LEFT] = at(11), s.mu[WRC_RIGHT] = at(12);
       wrc_wheelset_result r;
-      code.mutable_data()[i] = self.wheelset.try_eval(s, r);
-      const bool failed = code.data()[i] < 0;
+      code_out[i] = self.wheelset.try_eval(s, r);
+      const bool failed = code_out[i] < 0;
       for (int side = 0; side < 2; ++side) {
         const wrc_wheel_contact& c = r.wheel[side];
         for (int j = 0; j < 3; ++j) {
-          force.mutable_data()[(i * 2 + side) * 3 + j] = failed ? kNan : c.force[j];
-          moment.mutable_data()[(i * 2 + side) * 3 + j] = failed ? kNan : c.moment[j];
+          f_out[(i * 2 + side) * 3 + j] = failed ? kNan : c.force[j];
+          m_out[(i * 2 + side) * 3 + j] = failed ? kNan : c.moment[j];
         }
-        contact_y.mutable_data()[i * 2 + side] = failed ? kNan : c.contact_y;
-        contact_angle.mutable_data()[i * 2 + side] = failed ? kNan : c.contact_angle;
-        flags.mutable_data()[i * 2 + side] = failed ? code.data()[i] : c.flags;
+        y_out[i * 2 + side] = failed ? kNan : c.contact_y;
+        a_out[i * 2 + side] = failed ? kNan : c.contact_angle;
+        flag_out[i * 2 + side] = failed ? code_out[i] : c.flags;
       }
       for (int j = 0; j < 3; ++j) {
-        total_force.mutable_data()[i * 3 + j] = failed ? kNan : r.force[j];
-        total_moment.mutable_data()[i * 3 + j] = failed ? kNan : r.moment[j];
+        tf_out[i * 3 + j] = failed ? kNan : r.force[j];
+        tm_out[i * 3 + j] = failed ? kNan : r.moment[j];
       }
     }
   }
