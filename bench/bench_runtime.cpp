@@ -1,7 +1,8 @@
 // Cost of one table lookup (wrc_table_eval / wrc_table_eval_deriv) on a 4-D table of the size a
 // scene produces (y × roll × yaw × spin = 41 × 5 × 5 × 9, 6 outputs), multilinear and cubic,
 // with and without derivatives, for random and for coherent (trajectory-like) query order.
-// Targets: <= 100 ns multilinear, <= 500 ns cubic (values only).
+// Targets: <= 100 ns multilinear, <= 500 ns cubic (values only). BM_Wheelset: one evaluation
+// of a whole wheelset (two lookups and the mapping around them).
 //
 //   build-runtime/bench/bench_runtime --benchmark_min_time=0.5
 
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "tests/runtime/table_writer.h"
+#include "tests/runtime/wheelset_table.h"
 #include "wrc/runtime.h"
 
 namespace {
@@ -107,5 +109,44 @@ BENCHMARK_CAPTURE(BM_Lookup, cubic / random / deriv, WRC_INTERP_CUBIC, Order::kR
 BENCHMARK_CAPTURE(BM_Lookup, cubic / coherent / deriv, WRC_INTERP_CUBIC, Order::kCoherent, true);
 
 }  // namespace
+
+// One wheelset evaluation: both wheels (the left one mirrored) from one 41 × 5 × 5 × 9 table
+// with 8 outputs, states along the hunting trajectory above, at a speed other than the
+// table's (so that velocities are rescaled).
+void BM_Wheelset(benchmark::State& state, int mode) {
+  static wrc::test::ScratchFile file("bench-wheelset");
+  static const bool written = (wrc::test::WriteWheelsetTable(file.path()), true);
+  (void)written;
+  wrc_table* table = nullptr;
+  wrc_wheelset* wheelset = nullptr;
+  if (wrc_table_open(file.path().c_str(), &table) != 0 ||
+      wrc_table_set_interpolation(table, mode) != 0 ||
+      wrc_wheelset_create(nullptr, table, &wheelset) != 0) {
+    std::fprintf(stderr, "bench_runtime: %s\n", wrc_last_error());
+    std::abort();
+  }
+  const std::vector<double>& points = GetFixture().coherent_points;
+  std::vector<wrc_wheelset_state> states(kPoints);
+  for (int i = 0; i < kPoints; ++i) {
+    wrc_wheelset_state_init(&states[i]);
+    const double* p = &points[static_cast<std::size_t>(i) * kAxes];
+    states[i].y = p[0];
+    states[i].roll = p[1];
+    states[i].yaw = p[2];
+    states[i].velocity = 30000.0;
+    states[i].omega = -(30000.0 / 460.0) * (1.0 + p[3]);
+  }
+  wrc_wheelset_result result;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(wrc_wheelset_eval(wheelset, &states[i], &result));
+    benchmark::DoNotOptimize(result.force[1]);
+    i = (i + 1) & (kPoints - 1);
+  }
+  wrc_wheelset_destroy(wheelset);
+  wrc_table_close(table);
+}
+BENCHMARK_CAPTURE(BM_Wheelset, linear, WRC_INTERP_LINEAR);
+BENCHMARK_CAPTURE(BM_Wheelset, cubic, WRC_INTERP_CUBIC);
 
 BENCHMARK_MAIN();

@@ -131,6 +131,16 @@ const double* wrc_table_axis_values(const wrc_table* t, int i) {
   return CheckAxis(t, i, "wrc_table_axis_values") ? t->table.axis(i).values.data() : nullptr;
 }
 
+const double* wrc_table_node_values(const wrc_table* t) {
+  return CheckTable(t, "wrc_table_node_values") ? t->table.node_values() : nullptr;
+}
+
+const signed char* wrc_table_node_status(const wrc_table* t) {
+  return CheckTable(t, "wrc_table_node_status")
+             ? reinterpret_cast<const signed char*>(t->table.node_status())
+             : nullptr;
+}
+
 const char* wrc_table_output_name(const wrc_table* t, int i) {
   return CheckOutput(t, i, "wrc_table_output_name") ? t->table.output(i).name.c_str() : nullptr;
 }

@@ -81,6 +81,12 @@ class Table {
   /// Root string attributes (format, wrc_version, scene, ...).
   const std::map<std::string, std::string, std::less<>>& attributes() const { return attributes_; }
 
+  std::size_t num_nodes() const { return num_nodes_; }
+  /// The grid data as loaded: per node (row-major over the axes), one value per output.
+  const double* node_values() const { return values_.data(); }
+  /// /status per node.
+  const std::int8_t* node_status() const { return status_.data(); }
+
   int interpolation() const { return interpolation_; }
   /// Switches mode; builds the cubic node data on first use (may throw std::bad_alloc).
   void SetInterpolation(int mode);

@@ -2,11 +2,11 @@
  * @file runtime.h
  * @brief wrc runtime: look up precomputed wheel–rail contact tables (C99 API).
  *
- * A table is an HDF5 file written by `wrc generate` (layout in SPEC §4.2): outputs such as
+ * A table is an HDF5 file written by `wrc generate`: outputs such as
  * fx … mz sampled on a rectilinear grid of axes such as y, roll, yaw, spin. This library loads a
  * table into memory and interpolates it. It depends on HDF5 only.
  *
- * The functions of SPEC §6 are here with exactly those names; everything else is an extension,
+ * The functions of the interface contract keep their names; everything else is an extension,
  * listed in runtime/README.md.
  *
  * Error handling: functions returning int give 0 (or non-negative flags) on success and a
@@ -84,7 +84,7 @@ typedef struct wrc_table wrc_table;
 #define WRC_MAX_AXES 8
 
 /* ---------------------------------------------------------------------------------------------
- * SPEC §6
+ * The table API
  * ------------------------------------------------------------------------------------------- */
 
 /** Opens and loads a table, validating its format, version, shapes and values.
@@ -171,9 +171,107 @@ WRC_API const char* wrc_table_axis_unit(const wrc_table* t, int i);
 /** The `unit` attribute of /outputs/<name>, "" when absent; NULL on error. */
 WRC_API const char* wrc_table_output_unit(const wrc_table* t, int i);
 
+/** The table's data as loaded: for each grid node (row-major over the axes, the last axis
+ *  fastest) one value per output, in output order; the product of the axis sizes times
+ *  wrc_table_num_outputs(t) values. NULL for a NULL table. Valid until the table is closed. */
+WRC_API const double* wrc_table_node_values(const wrc_table* t);
+
+/** The /status of each grid node (0 ok, 1 no contact, 2 not converged, 3 error), in the order
+ *  of wrc_table_node_values(). NULL for a NULL table. Valid until the table is closed. */
+WRC_API const signed char* wrc_table_node_status(const wrc_table* t);
+
 /** A string attribute of the file's root group (format, wrc_version, created, scene, …), or
  *  NULL when there is none of that name (wrc_last_error() then says so). */
 WRC_API const char* wrc_table_attribute(const wrc_table* t, const char* name);
+
+/* ---------------------------------------------------------------------------------------------
+ * Wheelsets
+ *
+ * A wheelset is two wheels on two rails; each wheel is read from a table made for one wheel
+ * (one case = one wheel on one rail). Either side may be served by a table made for the other
+ * side, read as its mirror image in the track's x–z plane: the pose quantities that change sign
+ * under that mirror (y, roll, yaw, vy, vroll, vyaw) are negated on the way in, and the outputs
+ * that do (fy, mx, mz, contact_y, contact_angle) on the way out; z, fz, omega, spin, velocity,
+ * mu, fx, my and fz stay. This is how the solver itself solves a `side = "left"` case.
+ * ------------------------------------------------------------------------------------------- */
+
+/** Index of the left and the right wheel in the arrays below. */
+#define WRC_LEFT 0
+#define WRC_RIGHT 1
+
+/** Wheelset result flag (besides WRC_FLAG_CLAMPED and WRC_FLAG_STATUS, per wheel): the state
+ *  gives a quantity the table has no axis for, at a value other than the one the table was made
+ *  with; the table's value was used. */
+#define WRC_FLAG_FIXED 4
+
+/** Two wheels, each with its table. Opaque; the tables are borrowed and must outlive it. */
+typedef struct wrc_wheelset wrc_wheelset;
+
+/** A wheelset's state as a multibody simulator has it: track frame (x along the track, y
+ *  lateral, z down), mm, rad, s, N. */
+typedef struct wrc_wheelset_state {
+  double y;        /**< mm, lateral displacement of the wheelset. */
+  double z;        /**< mm, vertical displacement (down), 0 at the nominal position. */
+  double roll;     /**< rad, about x. */
+  double yaw;      /**< rad, about z. */
+  double vy;       /**< mm/s, lateral velocity. */
+  double vroll;    /**< rad/s. */
+  double vyaw;     /**< rad/s. */
+  double omega;    /**< rad/s, rotation about the axle; negative when rolling forward. */
+  double velocity; /**< mm/s, forward speed V > 0. */
+  /** N, vertical force on each rail ([WRC_LEFT], [WRC_RIGHT]): read on tables with an fz
+   *  axis (made with z solved for); NaN when not known. */
+  double fz[2];
+  /** Friction coefficient at each wheel, read on tables with a mu axis; NaN when not known. */
+  double mu[2];
+} wrc_wheelset_state;
+
+/** One wheel's contact: forces and moments on the rail, in track coordinates. */
+typedef struct wrc_wheel_contact {
+  double force[3];      /**< N, (fx, fy, fz) on the rail. */
+  double moment[3];     /**< N·mm, (mx, my, mz) on the rail, about the rail's origin. */
+  double contact_y;     /**< mm, lateral position of the force resultant on the rail profile. */
+  double contact_angle; /**< rad, surface inclination there (track frame). */
+  int flags;            /**< WRC_FLAG_CLAMPED | WRC_FLAG_STATUS | WRC_FLAG_FIXED. */
+} wrc_wheel_contact;
+
+/** Both wheels and the total. Outputs a table does not hold are NaN. */
+typedef struct wrc_wheelset_result {
+  wrc_wheel_contact wheel[2]; /**< [WRC_LEFT], [WRC_RIGHT] */
+  double force[3];            /**< N, on the wheelset: −(sum of the forces on the rails). */
+  /** N·mm, on the wheelset about the track origin: −Σ (moment + origin × force) over the
+   *  rails, with the rail origins of wrc_wheelset_set_rail_origin(); NaN until both are set. */
+  double moment[3];
+} wrc_wheelset_result;
+
+/** Fills a state with zeros, and NaN for fz and mu (not known). The caller then sets at least
+ *  velocity and omega. NULL is allowed. */
+WRC_API void wrc_wheelset_state_init(wrc_wheelset_state* state);
+
+/** Makes a wheelset from a table for each side. Either may be NULL: that side is then served by
+ *  the other table, mirrored. A table made for the opposite side (its scene's wheelset.side) is
+ *  read mirrored too. Each table's scene must give state.velocity; its axes may be any of y, z,
+ *  fz, roll, yaw, spin, omega, vy, vyaw, mu.
+ *  @return 0, or WRC_ERR_NULL_POINTER (both tables or out NULL), WRC_ERR_FORMAT (scene without
+ *          a velocity, unknown axis), WRC_ERR_OUT_OF_MEMORY. */
+WRC_API int wrc_wheelset_create(const wrc_table* left, const wrc_table* right, wrc_wheelset** out);
+
+/** Frees a wheelset (not its tables); NULL is allowed. */
+WRC_API void wrc_wheelset_destroy(wrc_wheelset* wheelset);
+
+/** Sets the origin of a rail (side WRC_LEFT or WRC_RIGHT) in the track frame, (y, z) in mm, as
+ *  `wrc solve` reports it; needed for the wheelset's total moment only. Not to be called while
+ *  other threads evaluate this wheelset. @return 0 or a negative code. */
+WRC_API int wrc_wheelset_set_rail_origin(wrc_wheelset* wheelset, int side, double y, double z);
+
+/** Evaluates both wheels. Velocities enter relative to the forward speed: a table made at speed
+ *  V0 is read at vy·V0/V, vyaw·V0/V (and vroll, omega likewise; spin = −omega·r0/V − 1 with the
+ *  table's nominal radius r0), so one table serves every speed.
+ *  @return the flags of both wheels or'ed (each wheel's in result->wheel[i].flags), or a
+ *          negative WRC_ERR_* code (NULL pointer, NaN input, velocity ≤ 0, no data) with the
+ *          reason in wrc_last_error(). Thread-safe; does not allocate. */
+WRC_API int wrc_wheelset_eval(const wrc_wheelset* wheelset, const wrc_wheelset_state* state,
+                              wrc_wheelset_result* result);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -136,4 +136,64 @@ class Table {
   wrc_table* handle_ = nullptr;
 };
 
+/// Both wheels of a wheelset, each read from a table (see wrc_wheelset_create). The tables are
+/// borrowed: they must outlive this object. Move-only; eval() is thread-safe and, unless it
+/// throws, allocation-free. (Named apart from the solver's wrc::Wheelset, its geometry.)
+class WheelsetTable {
+ public:
+  /// A state with the defaults of wrc_wheelset_state_init (zeros, fz and mu unknown).
+  struct State : wrc_wheelset_state {
+    State() : wrc_wheelset_state() { wrc_wheelset_state_init(this); }
+  };
+  using Result = wrc_wheelset_result;
+
+  /// One table for both wheels: the other side reads it mirrored.
+  explicit WheelsetTable(const Table& table) : WheelsetTable(nullptr, &table) {}
+  /// A table for each side (either may be made for either side).
+  WheelsetTable(const Table& left, const Table& right) : WheelsetTable(&left, &right) {}
+  WheelsetTable(WheelsetTable&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
+  WheelsetTable& operator=(WheelsetTable&& other) noexcept {
+    if (this != &other) {
+      wrc_wheelset_destroy(handle_);
+      handle_ = std::exchange(other.handle_, nullptr);
+    }
+    return *this;
+  }
+  WheelsetTable(const WheelsetTable&) = delete;
+  WheelsetTable& operator=(const WheelsetTable&) = delete;
+  ~WheelsetTable() { wrc_wheelset_destroy(handle_); }
+
+  /// Rail origin (y, z) in the track frame, mm, for the total moment; side WRC_LEFT/WRC_RIGHT.
+  void set_rail_origin(int side, double y, double z) {
+    Checked(wrc_wheelset_set_rail_origin(handle_, side, y, z));
+  }
+  /// Evaluates both wheels; returns their flags or'ed, throws TableError on errors.
+  int eval(const wrc_wheelset_state& state, Result& result) const {
+    return Checked(wrc_wheelset_eval(handle_, &state, &result));
+  }
+  Result eval(const wrc_wheelset_state& state, int* flags = nullptr) const {
+    Result result;
+    const int code = eval(state, result);
+    if (flags != nullptr) *flags = code;
+    return result;
+  }
+  /// The raw C result without exceptions.
+  int try_eval(const wrc_wheelset_state& state, Result& result) const noexcept {
+    return wrc_wheelset_eval(handle_, &state, &result);
+  }
+  wrc_wheelset* get() const noexcept { return handle_; }
+
+ private:
+  WheelsetTable(const Table* left, const Table* right) {
+    Checked(wrc_wheelset_create(left != nullptr ? left->get() : nullptr,
+                                right != nullptr ? right->get() : nullptr, &handle_));
+  }
+  static int Checked(int code) {
+    if (code < 0) throw TableError(code, wrc_last_error());
+    return code;
+  }
+
+  wrc_wheelset* handle_ = nullptr;
+};
+
 }  // namespace wrc

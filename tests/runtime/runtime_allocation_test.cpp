@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tests/runtime/table_writer.h"
+#include "tests/runtime/wheelset_table.h"
 #include "wrc/runtime.h"
 #include "wrc/runtime.hpp"
 
@@ -281,3 +282,31 @@ TEST(RuntimeAllocation, CubicEvaluationAfterAModeSwitchDoesNotAllocate) {
 }
 
 }  // namespace
+
+// The wheelset API evaluates two tables per call and allocates nothing either, on the
+// ordinary, the clamped and the error path.
+TEST(RuntimeAllocation, WheelsetEvaluationDoesNotAllocate) {
+  wrc::test::ScratchFile scratch("allocation-wheelset");
+  wrc::test::WriteWheelsetTable(scratch.path());
+  const wrc::Table table(scratch.path());
+  const wrc::WheelsetTable wheelset(table);
+  std::vector<wrc::WheelsetTable::State> states(300);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    states[i].y = 0.1 * static_cast<double>(i) - 15.0;  // partly beyond the y axis
+    states[i].velocity = 20000.0 + static_cast<double>(i);
+    states[i].omega = i % 100 == 0 ? std::nan("") : -states[i].velocity / 460.0;
+  }
+  int errors = 0;
+  long count = 0;
+  {
+    AllocationCounter counter;
+    for (const auto& state : states) {
+      wrc_wheelset_result result;
+      errors += wheelset.try_eval(state, result) < 0;
+      g_sink = const_cast<char*>(wrc_last_error());
+    }
+    count = counter.count();
+  }
+  EXPECT_EQ(count, 0);
+  EXPECT_EQ(errors, 3);
+}

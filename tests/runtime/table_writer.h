@@ -33,6 +33,8 @@ struct TableContent {
   std::function<std::int8_t(const std::vector<double>& coordinates)> status;
   /// Write the /outputs attribute 'order' (the runtime otherwise uses creation order).
   bool write_output_order = true;
+  /// The root attribute `scene` (the wheelset API reads [state] and [wheelset] from it).
+  std::string scene = "# written by tests/runtime/table_writer.h\n[table]\n";
 };
 
 /// n values from first to last, equally spaced (last exactly).
@@ -61,7 +63,7 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
   file.WriteIntAttribute("format_version", 1);
   file.WriteStringAttribute("wrc_version", "0.1.0-test");
   file.WriteStringAttribute("created", "2024-01-01T00:00:00Z");
-  file.WriteStringAttribute("scene", "# written by tests/runtime/table_writer.h\n[table]\n");
+  file.WriteStringAttribute("scene", content.scene);
   file.WriteStringAttribute("rail_profile_sha256", std::string(64, '0'));
   file.WriteStringAttribute("wheel_profile_sha256", std::string(64, '1'));
 

@@ -1,0 +1,298 @@
+// The wheelset API of include/wrc/runtime.h: maps a wheelset's state to the axes of each
+// wheel's table, evaluates both and assembles the forces in track coordinates.
+
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <optional>
+#include <string>
+
+#include "runtime/scene_values.h"
+#include "runtime/table.h"
+#include "wrc/runtime.h"
+
+namespace {
+
+using wrc::runtime::SceneNumber;
+using wrc::runtime::SceneString;
+using wrc::runtime::SetLastError;
+
+// Quantities a table axis may stand for.
+enum Quantity { kY, kZ, kFz, kRoll, kYaw, kSpin, kOmega, kVy, kVroll, kVyaw, kMu, kQuantities };
+constexpr const char* kQuantityNames[kQuantities] = {"y",     "z",  "fz",    "roll", "yaw", "spin",
+                                                     "omega", "vy", "vroll", "vyaw", "mu"};
+// Sign of each quantity under the mirror image in the x–z plane.
+constexpr double kQuantityMirror[kQuantities] = {-1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1};
+
+// Outputs the wheelset result reads, with their sign under the mirror image.
+enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kOutputs };
+constexpr const char* kOutputNames[kOutputs] = {"fx", "fy", "fz",        "mx",
+                                                "my", "mz", "contact_y", "contact_angle"};
+constexpr double kOutputMirror[kOutputs] = {1, -1, 1, -1, 1, -1, -1, -1};
+
+// Most outputs a table may have to be read here: the result buffer lives on the stack.
+constexpr int kMaxOutputs = 64;
+
+// One wheel: its table, whether it is read mirrored, and where each quantity goes.
+struct Wheel {
+  const wrc_table* table = nullptr;
+  double mirror = 1.0;
+  int axis_quantity[WRC_MAX_AXES] = {};  // per axis
+  double axis_first[WRC_MAX_AXES] = {};  // per axis: its range
+  double axis_last[WRC_MAX_AXES] = {};
+  int output_index[kOutputs] = {};  // -1: not in the table
+  // The value the table was made with for each quantity that is not an axis (NaN: unknown, or
+  // irrelevant such as z when fz was prescribed).
+  double fixed[kQuantities] = {};
+  double velocity = 0.0;        // V0, mm/s
+  double nominal_radius = 0.0;  // r0, mm
+};
+
+}  // namespace
+
+struct wrc_wheelset {
+  Wheel wheel[2];
+  double origin[2][2] = {{NAN, NAN}, {NAN, NAN}};  // per rail: (y, z)
+};
+
+namespace {
+
+// The fixed values of a scene's [state]: absent keys are 0 except z/fz (one of them is given)
+// and omega/spin (omega follows from spin, free rolling by default).
+void ReadFixedState(const std::string& scene, Wheel& w) {
+  for (int q = 0; q < kQuantities; ++q) {
+    w.fixed[q] = SceneNumber(scene, "state", kQuantityNames[q]).value_or(0.0);
+  }
+  w.fixed[kZ] = SceneNumber(scene, "state", "z").value_or(NAN);
+  w.fixed[kFz] = SceneNumber(scene, "state", "fz").value_or(NAN);
+  w.fixed[kMu] = SceneNumber(scene, "friction", "mu").value_or(NAN);
+  const auto omega = SceneNumber(scene, "state", "omega");
+  w.fixed[kSpin] = omega ? -*omega * w.nominal_radius / w.velocity - 1.0
+                         : SceneNumber(scene, "state", "spin").value_or(0.0);
+  w.fixed[kOmega] = -(w.velocity / w.nominal_radius) * (1.0 + w.fixed[kSpin]);
+}
+
+int QuantityOf(const char* axis_name) {
+  for (int q = 0; q < kQuantities; ++q) {
+    if (std::strcmp(axis_name, kQuantityNames[q]) == 0) return q;
+  }
+  return -1;
+}
+
+// Reads what the wheel needs from its table; `side` is the wheel's side.
+int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
+  const char* scene_attribute = wrc_table_attribute(table, "scene");
+  const std::string scene = scene_attribute != nullptr ? scene_attribute : "";
+  const auto velocity = SceneNumber(scene, "state", "velocity");
+  if (!velocity || !(*velocity > 0.0)) {
+    SetLastError("wrc_wheelset_create: the table's scene gives no positive state.velocity");
+    return WRC_ERR_FORMAT;
+  }
+  w.table = table;
+  w.velocity = *velocity;
+  w.nominal_radius = SceneNumber(scene, "wheelset", "nominal_radius").value_or(460.0);
+  const std::string table_side = SceneString(scene, "wheelset", "side").value_or("right");
+  w.mirror = (table_side == "left") == (side == WRC_LEFT) ? 1.0 : -1.0;
+  ReadFixedState(scene, w);
+  for (int a = 0; a < wrc_table_num_axes(table); ++a) {
+    const int q = QuantityOf(wrc_table_axis_name(table, a));
+    if (q < 0) {
+      SetLastError("wrc_wheelset_create: axis '%s' is not a wheelset quantity",
+                   wrc_table_axis_name(table, a));
+      return WRC_ERR_FORMAT;
+    }
+    w.axis_quantity[a] = q;
+    w.axis_first[a] = wrc_table_axis_values(table, a)[0];
+    w.axis_last[a] = wrc_table_axis_values(table, a)[wrc_table_axis_size(table, a) - 1];
+    w.fixed[q] = NAN;
+    // spin and omega are one quantity in two forms.
+    if (q == kSpin || q == kOmega) w.fixed[kSpin] = w.fixed[kOmega] = NAN;
+  }
+  if (wrc_table_num_outputs(table) > kMaxOutputs) {
+    SetLastError("wrc_wheelset_create: the table has more than %d outputs", kMaxOutputs);
+    return WRC_ERR_FORMAT;
+  }
+  for (int k = 0; k < kOutputs; ++k)
+    w.output_index[k] = wrc_table_output_index(table, kOutputNames[k]);
+  return 0;
+}
+
+// The wheel's view of the state in the right-hand quantities of its table, before mirroring:
+// velocities rescaled to the table's speed (creepages depend on velocity ratios only).
+void StateQuantities(const wrc_wheelset_state& s, int side, const Wheel& w,
+                     double (&value)[kQuantities]) {
+  const double scale = w.velocity / s.velocity;
+  value[kY] = s.y;
+  value[kZ] = s.z;
+  value[kFz] = s.fz[side];
+  value[kRoll] = s.roll;
+  value[kYaw] = s.yaw;
+  value[kSpin] = -s.omega * w.nominal_radius / s.velocity - 1.0;
+  value[kOmega] = s.omega * scale;
+  value[kVy] = s.vy * scale;
+  value[kVroll] = s.vroll * scale;
+  value[kVyaw] = s.vyaw * scale;
+  value[kMu] = s.mu[side];
+  for (int q = 0; q < kQuantities; ++q) value[q] *= w.mirror > 0.0 ? 1.0 : kQuantityMirror[q];
+}
+
+// WRC_FLAG_FIXED when the state asks for a value the table fixes otherwise. A quantity the
+// caller does not know (NaN fz, mu) asks for nothing.
+int FixedFlag(const Wheel& w, const double (&value)[kQuantities]) {
+  for (int q = 0; q < kQuantities; ++q) {
+    if (std::isnan(w.fixed[q]) || std::isnan(value[q])) continue;
+    const double tolerance = 1e-9 * (1.0 + std::fabs(w.fixed[q]) + std::fabs(value[q]));
+    if (std::fabs(value[q] - w.fixed[q]) > tolerance) return WRC_FLAG_FIXED;
+  }
+  return 0;
+}
+
+double MirroredOutput(const Wheel& w, const double* out, int k) {
+  const int index = w.output_index[k];
+  if (index < 0) return NAN;
+  return w.mirror > 0.0 ? out[index] : kOutputMirror[k] * out[index];
+}
+
+// A coordinate that lies outside its axis by rounding only (spin recomputed from omega at an
+// end node, say) is taken at the end: it is not a pose the table cannot serve.
+double SnapToRange(const Wheel& w, int a, double x) {
+  const double slack = 1e-12 * (w.axis_last[a] - w.axis_first[a] + std::fabs(w.axis_first[a]) +
+                                std::fabs(w.axis_last[a]));
+  if (x < w.axis_first[a] && x >= w.axis_first[a] - slack) return w.axis_first[a];
+  if (x > w.axis_last[a] && x <= w.axis_last[a] + slack) return w.axis_last[a];
+  return x;
+}
+
+int EvalWheel(const Wheel& w, const wrc_wheelset_state& s, int side, wrc_wheel_contact& c) {
+  double value[kQuantities];
+  StateQuantities(s, side, w, value);
+  double point[WRC_MAX_AXES];
+  for (int a = 0; a < wrc_table_num_axes(w.table); ++a) {
+    point[a] = SnapToRange(w, a, value[w.axis_quantity[a]]);
+  }
+  double out[kMaxOutputs];
+  const int flags = wrc_table_eval(w.table, point, out);
+  if (flags < 0) return flags;
+  for (int i = 0; i < 3; ++i) {
+    c.force[i] = MirroredOutput(w, out, kFx + i);
+    c.moment[i] = MirroredOutput(w, out, kMx + i);
+  }
+  c.contact_y = MirroredOutput(w, out, kContactY);
+  c.contact_angle = MirroredOutput(w, out, kContactAngle);
+  c.flags = flags | FixedFlag(w, value);
+  return c.flags;
+}
+
+// Forces and moments on the wheelset, the reactions of those on the rails; moments moved from
+// each rail's origin o to the track origin: M + o × F with o = (0, o_y, o_z).
+void Totals(const wrc_wheelset& ws, wrc_wheelset_result& r) {
+  for (int i = 0; i < 3; ++i) {
+    r.force[i] = -(r.wheel[0].force[i] + r.wheel[1].force[i]);
+    r.moment[i] = 0.0;
+  }
+  for (int side = 0; side < 2; ++side) {
+    const double* f = r.wheel[side].force;
+    const double* m = r.wheel[side].moment;
+    const double oy = ws.origin[side][0], oz = ws.origin[side][1];
+    r.moment[0] -= m[0] + oy * f[2] - oz * f[1];
+    r.moment[1] -= m[1] + oz * f[0];
+    r.moment[2] -= m[2] - oy * f[0];
+  }
+}
+
+int CheckState(const wrc_wheelset_state& s) {
+  const double pose[] = {s.y, s.z, s.roll, s.yaw, s.vy, s.vroll, s.vyaw, s.omega, s.velocity};
+  for (const double v : pose) {
+    if (std::isnan(v)) {
+      SetLastError("wrc_wheelset_eval: a state value is NaN");
+      return WRC_ERR_NAN_INPUT;
+    }
+  }
+  if (!(s.velocity > 0.0) || std::isinf(s.velocity)) {
+    SetLastError("wrc_wheelset_eval: velocity = %g mm/s, must be positive and finite", s.velocity);
+    return WRC_ERR_INVALID_ARGUMENT;
+  }
+  return 0;
+}
+
+}  // namespace
+
+extern "C" {
+
+void wrc_wheelset_state_init(wrc_wheelset_state* state) {
+  if (state == nullptr) return;
+  *state = wrc_wheelset_state{};
+  state->fz[0] = state->fz[1] = state->mu[0] = state->mu[1] = NAN;
+}
+
+int wrc_wheelset_create(const wrc_table* left, const wrc_table* right, wrc_wheelset** out) {
+  if (out == nullptr || (left == nullptr && right == nullptr)) {
+    SetLastError("wrc_wheelset_create: %s is NULL", out == nullptr ? "out" : "both tables");
+    return WRC_ERR_NULL_POINTER;
+  }
+  *out = nullptr;
+  auto* ws = new (std::nothrow) wrc_wheelset;
+  if (ws == nullptr) {
+    SetLastError("wrc_wheelset_create: out of memory");
+    return WRC_ERR_OUT_OF_MEMORY;
+  }
+  try {
+    const wrc_table* tables[2] = {left ? left : right, right ? right : left};
+    for (int side = 0; side < 2; ++side) {
+      const int code = SetUpWheel(tables[side], side, ws->wheel[side]);
+      if (code < 0) {
+        delete ws;
+        return code;
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    delete ws;
+    SetLastError("wrc_wheelset_create: out of memory");
+    return WRC_ERR_OUT_OF_MEMORY;
+  } catch (const std::exception& error) {
+    delete ws;
+    SetLastError("wrc_wheelset_create: %s", error.what());
+    return WRC_ERR_INTERNAL;
+  }
+  *out = ws;
+  return 0;
+}
+
+void wrc_wheelset_destroy(wrc_wheelset* wheelset) { delete wheelset; }
+
+int wrc_wheelset_set_rail_origin(wrc_wheelset* wheelset, int side, double y, double z) {
+  if (wheelset == nullptr) {
+    SetLastError("wrc_wheelset_set_rail_origin: the wheelset is NULL");
+    return WRC_ERR_NULL_POINTER;
+  }
+  if (side != WRC_LEFT && side != WRC_RIGHT) {
+    SetLastError("wrc_wheelset_set_rail_origin: side %d is neither WRC_LEFT nor WRC_RIGHT", side);
+    return WRC_ERR_INVALID_ARGUMENT;
+  }
+  wheelset->origin[side][0] = y;
+  wheelset->origin[side][1] = z;
+  return 0;
+}
+
+int wrc_wheelset_eval(const wrc_wheelset* wheelset, const wrc_wheelset_state* state,
+                      wrc_wheelset_result* result) {
+  if (wheelset == nullptr || state == nullptr || result == nullptr) {
+    SetLastError("wrc_wheelset_eval: %s is NULL", wheelset == nullptr ? "the wheelset"
+                                                  : state == nullptr  ? "state"
+                                                                      : "result");
+    return WRC_ERR_NULL_POINTER;
+  }
+  const int check = CheckState(*state);
+  if (check < 0) return check;
+  int flags = 0;
+  for (int side = 0; side < 2; ++side) {
+    const int wheel_flags = EvalWheel(wheelset->wheel[side], *state, side, result->wheel[side]);
+    if (wheel_flags < 0) return wheel_flags;
+    flags |= wheel_flags;
+  }
+  Totals(*wheelset, *result);
+  return flags;
+}
+
+}  // extern "C"

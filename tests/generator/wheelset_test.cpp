@@ -1,0 +1,214 @@
+// The runtime's wheelset API against direct solves: a table made for the right wheel serves the
+// left one as its mirror image (checked against `side = "left"` solves at table nodes), and a
+// table made at 20 m/s serves 40 m/s when the velocities scale with the speed.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tests/generator/generator_test_util.h"
+#include "wrc/generator.h"
+#include "wrc/runtime.hpp"
+#include "wrc/scene.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc {
+namespace {
+
+using test::ScratchDir;
+
+constexpr double kV0 = 20000.0;  // mm/s, the table's speed
+constexpr double kRadius = 460.0;
+
+// y, yaw and vy symmetric about 0, so that the mirror image of a node is a node; vy = 200 is a
+// node too, so that reading 40 m/s unscaled would give another node's forces.
+std::string WheelsetScene(const std::string& side = "right") {
+  return "[wheelset]\nside = \"" + side + "\"\n" +
+         test::TinyScene(
+             "axes = [\"y\", \"yaw\", \"vy\", \"spin\"]\n"
+             "y = [-2.0, 0.0, 2.0]\n"
+             "yaw = [-0.002, 0.002]\n"
+             "vy = [-200.0, -100.0, 100.0, 200.0]\n"
+             "spin = [0.0, 0.002]\n"
+             "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"contact_y\", "
+             "\"contact_angle\"]",
+             "fz = 10000.0\nvelocity = 20000.0");
+}
+
+// One solve of the table's scene; side and speed may differ from the table's.
+WheelRailResult Solve(const Scene& scene, const std::vector<double>& point, WheelSide side,
+                      double velocity) {
+  Case c = CaseAtPoint(scene, point);
+  c.wheelset.side = side;
+  const double scale = velocity / c.state.velocity;
+  c.state.velocity = velocity;
+  c.state.vy *= scale;
+  c.state.omega = OmegaFromSpin(point[3], velocity, kRadius);
+  return SolveWheelRail(c);
+}
+
+// Forces agree to the solver's tolerance: 1e-6 of the vertical load (0.01 N), moments over a
+// 1 mm lever (10 N·mm) — the table's own solves use warm starts, the direct ones do not.
+void ExpectSameContact(const wrc_wheel_contact& wheel, const WheelRailResult& solve) {
+  constexpr double kForce = 1e-2, kMoment = 10.0;
+  ASSERT_GT(solve.force_T(2), 9000.0);  // in contact, carrying the load
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(wheel.force[i], solve.force_T(i), kForce) << "force " << i;
+    EXPECT_NEAR(wheel.moment[i], solve.moment_T(i), kMoment) << "moment " << i;
+  }
+  EXPECT_NEAR(wheel.contact_y, solve.contact_y, 1e-6);
+  EXPECT_NEAR(wheel.contact_angle, solve.contact_angle, 1e-9);
+}
+
+class WheelsetTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new ScratchDir("wheelset");
+    scene_ = new Scene(LoadScene(test::WriteFile(*dir_ / "scene.toml", WheelsetScene())));
+    table_ = new Table(Generate(*scene_, "right.h5"));
+  }
+  static std::string Generate(const Scene& scene, const std::string& name) {
+    GenerateOptions options;
+    options.output = *dir_ / name;
+    options.threads = 2;
+    options.progress = ProgressMode::kOff;
+    options.warm_start = false;  // each node then is exactly one cold solve, as below
+    options.mpi = MpiMode::kOff;
+    EXPECT_TRUE(GenerateTable(scene, options).complete);
+    return options.output.string();
+  }
+  static void TearDownTestSuite() {
+    delete table_;
+    delete scene_;
+    delete dir_;
+  }
+
+  // The state at node (y, yaw, vy, spin) of the table, at speed `velocity` with vy scaled.
+  static WheelsetTable::State StateAt(const std::vector<double>& node, double velocity) {
+    WheelsetTable::State state;
+    state.y = node[0];
+    state.yaw = node[1];
+    state.vy = node[2] * velocity / kV0;
+    state.velocity = velocity;
+    state.omega = OmegaFromSpin(node[3], velocity, kRadius);
+    return state;
+  }
+
+  // Every node of the table, as (y, yaw, vy, spin).
+  static std::vector<std::vector<double>> Nodes() {
+    std::vector<std::vector<double>> nodes;
+    for (const double y : scene_->axes[0].values) {
+      for (const double yaw : scene_->axes[1].values) {
+        for (const double vy : scene_->axes[2].values) {
+          for (const double spin : scene_->axes[3].values) nodes.push_back({y, yaw, vy, spin});
+        }
+      }
+    }
+    return nodes;
+  }
+  static std::string Describe(const std::vector<double>& node) {
+    return "y " + std::to_string(node[0]) + " yaw " + std::to_string(node[1]) + " vy " +
+           std::to_string(node[2]) + " spin " + std::to_string(node[3]);
+  }
+
+  static inline ScratchDir* dir_ = nullptr;
+  static inline Scene* scene_ = nullptr;
+  static inline Table* table_ = nullptr;
+};
+
+// At every node the right wheel reads the node and the left wheel its mirror image, which is a
+// node too: both must be the direct solves of their sides.
+TEST_F(WheelsetTest, BothWheelsEqualDirectSolvesAtNodes) {
+  const WheelsetTable wheelset(*table_);
+  int asymmetric = 0;
+  for (const std::vector<double>& node : Nodes()) {
+    SCOPED_TRACE(Describe(node));
+    int flags = -1;
+    const wrc_wheelset_result result = wheelset.eval(StateAt(node, kV0), &flags);
+    EXPECT_EQ(flags, 0);
+    ExpectSameContact(result.wheel[WRC_RIGHT], Solve(*scene_, node, WheelSide::kRight, kV0));
+    ExpectSameContact(result.wheel[WRC_LEFT], Solve(*scene_, node, WheelSide::kLeft, kV0));
+    const double fy_left = result.wheel[WRC_LEFT].force[1];
+    asymmetric += std::fabs(fy_left - result.wheel[WRC_RIGHT].force[1]) > 1.0;
+  }
+  // The mirror is not trivial: away from the symmetric pose the two wheels differ.
+  EXPECT_GT(asymmetric, 30);
+}
+
+// At 40 m/s the velocities scale to the table's nodes at 20 m/s (vy 200 mm/s → 100 mm/s).
+TEST_F(WheelsetTest, TableAtTwentyServesForty) {
+  const WheelsetTable wheelset(*table_);
+  const double v = 2.0 * kV0;
+  for (const std::vector<double>& node : Nodes()) {
+    if (std::fabs(node[2]) > 100.0) continue;  // 400 mm/s at 40 m/s: beyond the axis
+    SCOPED_TRACE(Describe(node));
+    int flags = -1;
+    const wrc_wheelset_result result = wheelset.eval(StateAt(node, v), &flags);
+    EXPECT_EQ(flags, 0);
+    ExpectSameContact(result.wheel[WRC_RIGHT], Solve(*scene_, node, WheelSide::kRight, v));
+    ExpectSameContact(result.wheel[WRC_LEFT], Solve(*scene_, node, WheelSide::kLeft, v));
+  }
+}
+
+// A table made for the left wheel serves the right one mirrored, just as the right table serves
+// the left: both wheelsets agree.
+TEST_F(WheelsetTest, LeftTableServesBothSides) {
+  const Scene left_scene = LoadScene(test::WriteFile(*dir_ / "left.toml", WheelsetScene("left")));
+  const Table left_table(Generate(left_scene, "left.h5"));
+  const WheelsetTable from_left(left_table), from_right(*table_);
+  const WheelsetTable both(left_table, *table_);
+  const wrc_wheelset_state state = StateAt({2.0, 0.002, 100.0, 0.002}, kV0);
+  const wrc_wheelset_result a = from_left.eval(state), b = from_right.eval(state);
+  const wrc_wheelset_result c = both.eval(state);
+  for (int side = 0; side < 2; ++side) {
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(a.wheel[side].force[i], b.wheel[side].force[i], 1e-2) << side << " " << i;
+      EXPECT_NEAR(a.wheel[side].moment[i], b.wheel[side].moment[i], 10.0) << side << " " << i;
+      EXPECT_NEAR(c.wheel[side].force[i], b.wheel[side].force[i], 1e-2) << side << " " << i;
+    }
+  }
+}
+
+TEST_F(WheelsetTest, TotalsAreTheReactionsMovedToTheTrackOrigin) {
+  WheelsetTable wheelset(*table_);
+  const wrc_wheelset_state state = StateAt({2.0, 0.002, 100.0, 0.002}, kV0);
+  wrc_wheelset_result result = wheelset.eval(state);
+  EXPECT_TRUE(std::isnan(result.moment[0]));  // rail origins not set
+  wheelset.set_rail_origin(WRC_LEFT, -750.0, 0.0);
+  wheelset.set_rail_origin(WRC_RIGHT, 750.0, 0.0);
+  result = wheelset.eval(state);
+  const wrc_wheel_contact& l = result.wheel[WRC_LEFT];
+  const wrc_wheel_contact& r = result.wheel[WRC_RIGHT];
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(result.force[i], -(l.force[i] + r.force[i]));
+  // About x: each rail's moment plus y·fz of its force, the lever 750 mm either side.
+  EXPECT_NEAR(result.moment[0],
+              -(l.moment[0] - 750.0 * l.force[2] + r.moment[0] + 750.0 * r.force[2]), 1e-6);
+  EXPECT_NEAR(result.moment[2],
+              -(l.moment[2] + 750.0 * l.force[0] + r.moment[2] - 750.0 * r.force[0]), 1e-6);
+}
+
+TEST_F(WheelsetTest, FlagsSayWhereTheTableCannotServe) {
+  const WheelsetTable wheelset(*table_);
+  WheelsetTable::State state = StateAt({1.0, 0.0, 0.0, 0.001}, kV0);
+  EXPECT_EQ(wheelset.eval(state).wheel[WRC_RIGHT].flags, 0);
+  state.vroll = 0.01;  // no vroll axis, the table was made at vroll = 0
+  EXPECT_EQ(wheelset.eval(state).wheel[WRC_RIGHT].flags, WRC_FLAG_FIXED);
+  state.vroll = 0.0;
+  state.y = 3.0;  // beyond the y axis for the right wheel; the left one reads y = -3
+  int flags = 0;
+  const wrc_wheelset_result result = wheelset.eval(state, &flags);
+  EXPECT_EQ(result.wheel[WRC_RIGHT].flags, WRC_FLAG_CLAMPED);
+  EXPECT_EQ(result.wheel[WRC_LEFT].flags, WRC_FLAG_CLAMPED);
+  EXPECT_EQ(flags, WRC_FLAG_CLAMPED);
+  state.velocity = 0.0;
+  wrc_wheelset_result ignored;
+  EXPECT_EQ(wheelset.try_eval(state, ignored), WRC_ERR_INVALID_ARGUMENT);
+  state.velocity = kV0;
+  state.yaw = NAN;
+  EXPECT_EQ(wheelset.try_eval(state, ignored), WRC_ERR_NAN_INPUT);
+}
+
+}  // namespace
+}  // namespace wrc
