@@ -156,8 +156,14 @@ std::string SceneIdentity(const Scene& scene) {
                    Sha256FileHex(scene.base.wheel.path));
 }
 
-void WritePasses(const fs::path& work, const std::string& identity,
-                 const std::vector<Axes>& passes) {
+// What a pass did, for the table's refine_passes record.
+struct PassRecord {
+  std::size_t points = 0, new_points = 0, samples = 0, above_target = 0;
+  double worst = 0.0;
+};
+
+void WritePasses(const fs::path& work, const std::string& identity, const std::vector<Axes>& passes,
+                 const std::vector<PassRecord>& records) {
   std::ostringstream text;
   text << "wrc-refine 1 " << identity << "\n";
   for (std::size_t p = 0; p < passes.size(); ++p) {
@@ -166,6 +172,11 @@ void WritePasses(const fs::path& work, const std::string& identity,
       text << axis.name << " " << axis.values.size();
       for (const double v : axis.values) text << " " << HexDouble(v);
       text << "\n";
+    }
+    if (p < records.size()) {
+      const PassRecord& r = records[p];
+      text << "record " << r.points << " " << r.new_points << " " << r.samples << " "
+           << r.above_target << " " << HexDouble(r.worst) << "\n";
     }
   }
   text << "end\n";
@@ -179,8 +190,8 @@ void WritePasses(const fs::path& work, const std::string& identity,
   fs::rename(temporary, work / "passes");
 }
 
-std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity,
-                             const Scene& scene) {
+std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity, const Scene& scene,
+                             std::vector<PassRecord>* records) {
   const fs::path path = work / "passes";
   std::ifstream in(path);
   const auto damaged = [&](const std::string& why) {
@@ -196,8 +207,19 @@ std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity,
   }
   std::vector<Axes> passes;
   std::string word;
+  records->clear();
   while (in >> word) {
     if (word == "end") return passes;
+    if (word == "record") {
+      PassRecord r;
+      std::string worst;
+      if (!(in >> r.points >> r.new_points >> r.samples >> r.above_target >> worst)) {
+        throw damaged("damaged");
+      }
+      r.worst = std::strtod(worst.c_str(), nullptr);
+      records->push_back(r);
+      continue;
+    }
     std::size_t index = 0;
     if (word != "pass" || !(in >> index) || index != passes.size()) throw damaged("damaged");
     Axes axes;
@@ -597,9 +619,15 @@ class KnownPoints {
       old_index_.push_back(std::move(map));
     }
     for (std::size_t s = 0; s < samples.size(); ++s) {
-      sampled_.emplace(PointKey(samples[s].point), std::move(sample_results[s]));
+      if (IsNode(new_axes, samples[s].point)) {
+        sampled_.emplace(PointKey(samples[s].point), std::move(sample_results[s]));
+      }
     }
+    taken_over_ = PointCount(old_axes) + sampled_.size();
   }
+
+  /// Points of the new grid this supplies (the old grid, the samples that became nodes).
+  std::size_t TakenOver() const { return taken_over_; }
 
   bool Lookup(std::uint64_t point, PointResult* result) const {
     std::uint64_t old_flat = 0;
@@ -632,11 +660,16 @@ class KnownPoints {
   std::vector<std::size_t> new_stride_;
   std::vector<std::vector<long>> old_index_;
   std::unordered_map<std::string, PointResult> sampled_;
-};
+  std::size_t taken_over_ = 0;
 
-struct PassRecord {
-  std::size_t points = 0, new_points = 0, samples = 0, above_target = 0;
-  double worst = 0.0;
+  static bool IsNode(const Axes& axes, const std::vector<double>& point) {
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (!std::binary_search(axes[a].values.begin(), axes[a].values.end(), point[a])) {
+        return false;
+      }
+    }
+    return true;
+  }
 };
 
 std::string DescribeAxes(const Axes& axes) {
@@ -713,11 +746,11 @@ std::vector<Axes> Refinement::StartOrResume() {
                        "--resume to continue it (finished points are reused), or delete the "
                        "directory to start over");
     }
-    return ReadPasses(work_, identity_, scene_);
+    return ReadPasses(work_, identity_, scene_, &records_);
   }
   fs::create_directories(work_);
   const std::vector<Axes> passes = {scene_.axes};
-  WritePasses(work_, identity_, passes);
+  WritePasses(work_, identity_, passes, records_);
   return passes;
 }
 
@@ -743,7 +776,8 @@ GenerateSummary Refinement::RunPass(int pass, const Axes& axes, const KnownPoint
   return summary;
 }
 
-std::optional<SampleRun> Refinement::RunSamples(int pass, const std::vector<RefineSample>& samples) {
+std::optional<SampleRun> Refinement::RunSamples(int pass,
+                                                const std::vector<RefineSample>& samples) {
   std::vector<std::vector<double>> points;
   std::vector<double> z_guess;
   for (const RefineSample& sample : samples) {
@@ -851,9 +885,14 @@ GenerateSummary Refinement::RunRoot() {
   }
   int pass = static_cast<int>(passes.size()) - 1;
   std::optional<KnownPoints> known;
-  // The previous pass's journal is removed only once this pass is complete: without it, this
-  // pass's own journal holds every point.
-  if (pass > 0 && fs::exists(PassJournal(work_, pass - 1))) {
+  // The previous pass's journal is removed once this pass's decision is written; a resume
+  // that finds the decision but also the old journal (a stop in between) just removes it.
+  if (pass > 1) {
+    std::error_code ignored;
+    fs::remove(PassJournal(work_, pass - 2), ignored);
+    fs::remove(SamplesJournal(work_, pass - 2), ignored);
+  }
+  if (pass > 0) {
     // The previous pass's grid and samples, for the points this pass takes over.
     const Axes& previous = passes[static_cast<std::size_t>(pass - 1)];
     TableData old =
@@ -865,18 +904,14 @@ GenerateSummary Refinement::RunRoot() {
   }
   for (;;) {
     const Axes axes = passes.back();
+    const std::size_t taken_over = known ? known->TakenOver() : 0;
     TableData data;
     GenerateSummary grid = RunPass(pass, axes, known ? &*known : nullptr, &data);
     if (!grid.complete) return Interrupted(grid);
     known.reset();
-    if (pass > 0) {
-      std::error_code ignored;
-      fs::remove(PassJournal(work_, pass - 1), ignored);
-      fs::remove(SamplesJournal(work_, pass - 1), ignored);
-    }
     PassRecord record;
     record.points = PointCount(axes);
-    record.new_points = grid.computed;
+    record.new_points = PointCount(axes) - taken_over;
     std::string stop_reason;
     Axes next = axes;
     std::vector<RefineSample> samples;
@@ -895,10 +930,10 @@ GenerateSummary Refinement::RunRoot() {
       if (record.above_target == 0) {
         stop_reason = "target met: every sampled interval midpoint within the target";
       } else if (PointCount(next) == PointCount(axes)) {
-        stop_reason = decision.refused > 0 ? "point budget (" +
-                                                 std::to_string(settings_.max_points) + " points)"
-                                           : "smallest steps reached where the error is above "
-                                             "target";
+        stop_reason = decision.refused > 0
+                          ? "point budget (" + std::to_string(settings_.max_points) + " points)"
+                          : "smallest steps reached where the error is above "
+                            "target";
       }
     }
     record.samples = samples.size();
@@ -913,7 +948,14 @@ GenerateSummary Refinement::RunRoot() {
       return WriteFinal(axes, data, check, stop_reason);
     }
     passes.push_back(next);
-    WritePasses(work_, identity_, passes);
+    WritePasses(work_, identity_, passes, records_);
+    // Only now is the previous pass redundant: until the decision is on disk, a resume
+    // rebuilds this pass's record from it.
+    if (pass > 0) {
+      std::error_code ignored;
+      fs::remove(PassJournal(work_, pass - 1), ignored);
+      fs::remove(SamplesJournal(work_, pass - 1), ignored);
+    }
     known.emplace(axes, std::move(data), next, samples, std::move(sample_run->results));
     ++pass;
   }

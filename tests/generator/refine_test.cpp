@@ -80,8 +80,7 @@ TEST(Refine, SplitsWhereTheKinkIsAndNowhereElse) {
       r.values = Synthetic(s.point);
       results.push_back(r);
     }
-    const gen::RefineDecision decision =
-        gen::DecideRefinement(scene, axes, data, samples, results);
+    const gen::RefineDecision decision = gen::DecideRefinement(scene, axes, data, samples, results);
     if (decision.next[1].values.size() == axes[1].values.size() &&
         decision.next[0].values.size() == axes[0].values.size()) {
       break;
@@ -144,7 +143,8 @@ double MaxRelativeError(const Scene& scene, const fs::path& table_path) {
 
 TEST(Refine, RealSceneGetsCloserToTheSolver) {
   ScratchDir dir("refine_real");
-  const fs::path coarse_scene = WriteFile(dir / "coarse.toml", TinyScene(RealTable("max_passes = 0\n")));
+  const fs::path coarse_scene =
+      WriteFile(dir / "coarse.toml", TinyScene(RealTable("max_passes = 0\n")));
   const fs::path fine_scene =
       WriteFile(dir / "fine.toml", TinyScene(RealTable("target = 0.005\nsamples = 1\n")));
   const Scene coarse = LoadScene(coarse_scene), fine = LoadScene(fine_scene);

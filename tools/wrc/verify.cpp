@@ -136,7 +136,8 @@ int PatchChange(const std::vector<std::vector<double>>& axes, const std::vector<
     flat[a] = v.size() == 1;
     if (flat[a]) continue;
     const double x = std::clamp(point[a], v.front(), v.back());
-    const std::size_t i = static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), x) - v.begin());
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), x) - v.begin());
     lower[a] = std::min(std::max<std::size_t>(i, 1), v.size() - 1) - 1;
   }
   double lo = INFINITY, hi = -INFINITY;
@@ -345,9 +346,9 @@ Verification VerifyTable(const VerifyOptions& opt) {
     v.points[k].status = status[k];
     v.points[k].exact = exact[k];
     if (patches_output != v.output_names.end()) {
-      v.points[k].patch_change =
-          PatchChange(axes, values[static_cast<std::size_t>(patches_output - v.output_names.begin())],
-                      points[k]);
+      v.points[k].patch_change = PatchChange(
+          axes, values[static_cast<std::size_t>(patches_output - v.output_names.begin())],
+          points[k]);
     }
   }
   AssignLoads(scene, v.output_names, &v.points);

@@ -92,8 +92,8 @@ int IndexOf(const std::vector<std::string>& names, const std::string& name, cons
   if (it == names.end()) {
     std::string all;
     for (const std::string& n : names) all += (all.empty() ? "" : ", ") + n;
-    throw InputError(std::string("--map: the table has no ") + what + " \"" + name +
-                     "\" (it has " + all + ")");
+    throw InputError(std::string("--map: the table has no ") + what + " \"" + name + "\" (it has " +
+                     all + ")");
   }
   return static_cast<int>(it - names.begin());
 }
@@ -167,8 +167,10 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
   {
     std::ofstream out(nodes);
     out.precision(12);
-    for (const double x : xs) out << x << ' ' << ys.front() << ' ' << 0 << ' ' << ys.back() - ys.front() << '\n';
-    for (const double y : ys) out << xs.front() << ' ' << y << ' ' << xs.back() - xs.front() << ' ' << 0 << '\n';
+    for (const double x : xs)
+      out << x << ' ' << ys.front() << ' ' << 0 << ' ' << ys.back() - ys.front() << '\n';
+    for (const double y : ys)
+      out << xs.front() << ' ' << y << ' ' << xs.back() - xs.front() << ' ' << 0 << '\n';
   }
   std::ostringstream through_text;
   for (std::size_t a = 0; a < v.axis_names.size(); ++a) {
@@ -182,8 +184,7 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
     gp << "set terminal pngcairo size 1000,760 font ',10'\n"
        << "set output '" << png.string() << "'\n"
        << "set title \"" << fs::path(opt.verify.table).filename().string() << ": error of "
-       << output << " (table − solver" << (force ? ", % of the local wheel load" : "")
-       << ")\\n"
+       << output << " (table − solver" << (force ? ", % of the local wheel load" : "") << ")\\n"
        << (through_text.str().empty() ? "" : "through " + through_text.str() + "; ")
        << "lines: table nodes\"\n"
        << "set xlabel '" << v.axis_names[ax] << " (" << table.axis_unit(ax) << ")'\n"
@@ -265,8 +266,7 @@ int RunVerify(const CommandOptions& opt) {
   } else {
     PrintText(v, opt);
     if (opt.tolerance >= 0.0) {
-      std::printf("\ntolerance %.3g on max_rel: %s\n", opt.tolerance,
-                  failed ? "EXCEEDED" : "met");
+      std::printf("\ntolerance %.3g on max_rel: %s\n", opt.tolerance, failed ? "EXCEEDED" : "met");
     }
   }
   std::cout.flush();
