@@ -2,7 +2,10 @@
 // scene produces (y × roll × yaw × spin = 41 × 5 × 5 × 9, 6 outputs), multilinear and cubic,
 // with and without derivatives, for random and for coherent (trajectory-like) query order.
 // Targets: <= 100 ns multilinear, <= 500 ns cubic (values only). BM_Wheelset: one evaluation
-// of a whole wheelset (two lookups and the mapping around them).
+// of a whole wheelset (two lookups and the mapping around them). BM_Refined: random multilinear
+// lookups on a 5-D table with the node counts and the kind of clustering the error-driven
+// refinement gives the shipped Manchester scene, against BM_Uniform, the same node counts
+// equally spaced (WRC_BENCH_TABLE=FILE replaces the synthetic refined table by a real one).
 //
 //   build-runtime/bench/bench_runtime --benchmark_min_time=0.5
 
@@ -147,6 +150,106 @@ void BM_Wheelset(benchmark::State& state, int mode) {
   wrc_table_close(table);
 }
 BENCHMARK_CAPTURE(BM_Wheelset, linear, WRC_INTERP_LINEAR);
+
+// Nodes clustered the way refinement clusters them: fine where x is near `at` (a creep knee or
+// the flange transition), coarse elsewhere; n nodes over [first, last].
+std::vector<double> Clustered(double first, double last, int n, double at) {
+  std::vector<double> v(static_cast<std::size_t>(n));
+  const double a = std::asinh(4.0 * (first - at) / (last - first));
+  const double b = std::asinh(4.0 * (last - at) / (last - first));
+  for (int i = 0; i < n; ++i) {
+    const double s = a + (b - a) * i / (n - 1);
+    v[static_cast<std::size_t>(i)] = at + (last - first) / 4.0 * std::sinh(s);
+  }
+  v.front() = first;
+  v.back() = last;
+  return v;
+}
+
+// A 5-D table (y_wheel, fz, roll, yaw, spin) with 6 outputs; `clustered` picks the node layout.
+struct FiveAxisTable {
+  wrc::test::ScratchFile file;
+  wrc_table* table = nullptr;
+  std::vector<double> points;
+  std::vector<std::vector<double>> axes;
+
+  explicit FiveAxisTable(bool clustered) : file(clustered ? "refined" : "uniform") {
+    const char* real = std::getenv("WRC_BENCH_TABLE");
+    if (clustered && real != nullptr) {
+      Open(real);
+    } else {
+      Write(clustered);
+      Open(file.path().c_str());
+    }
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < kPoints; ++i) {
+      for (const auto& axis : axes)
+        points.push_back(axis.front() + unit(random) * (axis.back() - axis.front()));
+    }
+  }
+  ~FiveAxisTable() { wrc_table_close(table); }
+
+  void Write(bool clustered) {
+    // The node counts of a refined Manchester table; a real table passed in WRC_BENCH_TABLE
+    // sets them for the uniform twin too.
+    std::vector<int> counts = {25, 8, 5, 20, 16};
+    const std::vector<double> first = {-10.92, 5000.0, -0.002, -0.01, -0.01};
+    const std::vector<double> last = {10.92, 20000.0, 0.002, 0.01, 0.01};
+    const std::vector<double> at = {6.0, 5000.0, 0.0, 0.0, 0.0};
+    if (const char* real = std::getenv("WRC_BENCH_TABLE")) {
+      wrc_table* t = nullptr;
+      if (wrc_table_open(real, &t) == 0) {
+        for (int a = 0; a < 5 && a < wrc_table_num_axes(t); ++a)
+          counts[a] = wrc_table_axis_size(t, a);
+        wrc_table_close(t);
+      }
+    }
+    const char* names[] = {"y_wheel", "fz", "roll", "yaw", "spin"};
+    wrc::test::TableContent content;
+    for (int a = 0; a < 5; ++a) {
+      content.axes.push_back({names[a],
+                              clustered ? Clustered(first[a], last[a], counts[a], at[a])
+                                        : wrc::test::Linspace(first[a], last[a], counts[a]),
+                              "-"});
+    }
+    content.outputs = {"fx", "fy", "fz", "mx", "my", "mz"};
+    content.function = [](int k, const std::vector<double>& x) {
+      return (k + 1) * (3000.0 * std::tanh(300.0 * x[3]) + 200.0 * x[0] + 0.1 * x[1]) + 1e6 * x[2] +
+             1e4 * x[4];
+    };
+    wrc::test::WriteTable(file.path(), content);
+  }
+
+  void Open(const char* path) {
+    if (wrc_table_open(path, &table) != 0) {
+      std::fprintf(stderr, "bench_runtime: %s\n", wrc_last_error());
+      std::abort();
+    }
+    for (int a = 0; a < wrc_table_num_axes(table); ++a) {
+      const double* v = wrc_table_axis_values(table, a);
+      axes.emplace_back(v, v + wrc_table_axis_size(table, a));
+    }
+  }
+};
+
+void BM_FiveAxis(benchmark::State& state, bool clustered) {
+  static FiveAxisTable refined(true), uniform(false);
+  FiveAxisTable& t = clustered ? refined : uniform;
+  const std::size_t n_axes = t.axes.size();
+  std::vector<double> out(static_cast<std::size_t>(wrc_table_num_outputs(t.table)));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const int flags = wrc_table_eval(t.table, &t.points[i * n_axes], out.data());
+    benchmark::DoNotOptimize(flags);
+    benchmark::DoNotOptimize(out.data());
+    i = (i + 1) & (kPoints - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["nodes"] = static_cast<double>(wrc_table_axis_size(t.table, 0));
+}
+BENCHMARK_CAPTURE(BM_FiveAxis, refined / linear / random, true);
+BENCHMARK_CAPTURE(BM_FiveAxis, uniform / linear / random, false);
 BENCHMARK_CAPTURE(BM_Wheelset, cubic, WRC_INTERP_CUBIC);
 
 BENCHMARK_MAIN();

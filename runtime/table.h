@@ -49,6 +49,10 @@ struct Axis {
   /// Nearly uniform spacing: the cell is found from (x - first) / mean step and a short walk.
   bool nearly_uniform = false;
   double inverse_mean_step = 0.0;
+  /// Otherwise (a refined axis): per bucket of equal width, the cell of its left end
+  /// (table_load.cpp: IndexBuckets), buckets + 1 entries.
+  std::vector<int> bucket_cell;
+  double inverse_bucket_width = 0.0;
 };
 
 struct Output {
@@ -122,6 +126,9 @@ class Table {
     int axis;  ///< Index into the point.
     bool nearly_uniform;
     double inverse_mean_step;
+    const int* bucket_cell;
+    int buckets;
+    double inverse_bucket_width;
     std::size_t node_stride;
   };
 

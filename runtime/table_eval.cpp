@@ -47,8 +47,12 @@ int Table::Locate(const double* point, Located& located) const noexcept {
       while (i > 0 && x < v[i]) --i;
       while (i < n - 2 && x >= v[i + 1]) ++i;
     } else {
-      i = static_cast<int>(std::upper_bound(v, v + n, x) - v) - 1;
-      i = std::clamp(i, 0, n - 2);
+      // x is inside [first, last], so the bucket exists; its cell is at or left of x's.
+      const int k =
+          std::min(static_cast<int>((x - axis.first) * axis.inverse_bucket_width), axis.buckets);
+      i = axis.bucket_cell[k];
+      while (i > 0 && x < v[i]) --i;  // k rounded up past a bucket end that is a node
+      while (i < n - 2 && x >= v[i + 1]) ++i;
     }
     CellCoordinate& cell = located.cell[j];
     const double lower = v[i];

@@ -19,11 +19,27 @@ using wrc::runtime::SceneString;
 using wrc::runtime::SetLastError;
 
 // Quantities a table axis may stand for.
-enum Quantity { kY, kZ, kFz, kRoll, kYaw, kSpin, kOmega, kVy, kVroll, kVyaw, kMu, kQuantities };
-constexpr const char* kQuantityNames[kQuantities] = {"y",     "z",  "fz",    "roll", "yaw", "spin",
-                                                     "omega", "vy", "vroll", "vyaw", "mu"};
+// y_wheel = y − r0·roll, the wheel's lateral position at its contact (an axis that follows the
+// tread-to-flange transition as the wheelset rolls).
+enum Quantity {
+  kY,
+  kZ,
+  kFz,
+  kRoll,
+  kYaw,
+  kSpin,
+  kOmega,
+  kVy,
+  kVroll,
+  kVyaw,
+  kMu,
+  kYWheel,
+  kQuantities
+};
+constexpr const char* kQuantityNames[kQuantities] = {
+    "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vroll", "vyaw", "mu", "y_wheel"};
 // Sign of each quantity under the mirror image in the x–z plane.
-constexpr double kQuantityMirror[kQuantities] = {-1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1};
+constexpr double kQuantityMirror[kQuantities] = {-1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1, -1};
 
 // Outputs the wheelset result reads, with their sign under the mirror image.
 enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kOutputs };
@@ -71,6 +87,7 @@ void ReadFixedState(const std::string& scene, Wheel& w) {
   w.fixed[kSpin] = omega ? -*omega * w.nominal_radius / w.velocity - 1.0
                          : SceneNumber(scene, "state", "spin").value_or(0.0);
   w.fixed[kOmega] = -(w.velocity / w.nominal_radius) * (1.0 + w.fixed[kSpin]);
+  w.fixed[kYWheel] = NAN;  // follows from y and roll, never fixed on its own
 }
 
 int QuantityOf(const char* axis_name) {
@@ -106,8 +123,9 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
     w.axis_first[a] = wrc_table_axis_values(table, a)[0];
     w.axis_last[a] = wrc_table_axis_values(table, a)[wrc_table_axis_size(table, a) - 1];
     w.fixed[q] = NAN;
-    // spin and omega are one quantity in two forms.
+    // spin and omega are one quantity in two forms; so are y and y_wheel (given roll).
     if (q == kSpin || q == kOmega) w.fixed[kSpin] = w.fixed[kOmega] = NAN;
+    if (q == kYWheel) w.fixed[kY] = NAN;
   }
   if (wrc_table_num_outputs(table) > kMaxOutputs) {
     SetLastError("wrc_wheelset_create: the table has more than %d outputs", kMaxOutputs);
@@ -134,6 +152,7 @@ void StateQuantities(const wrc_wheelset_state& s, int side, const Wheel& w,
   value[kVroll] = s.vroll * scale;
   value[kVyaw] = s.vyaw * scale;
   value[kMu] = s.mu[side];
+  value[kYWheel] = s.y - w.nominal_radius * s.roll;
   for (int q = 0; q < kQuantities; ++q) value[q] *= w.mirror > 0.0 ? 1.0 : kQuantityMirror[q];
 }
 

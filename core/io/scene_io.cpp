@@ -58,6 +58,7 @@ std::vector<std::pair<std::string_view, std::string_view>> KeysReplacedByAxis(
   if (axis == "z" || axis == "fz") return {{"state", "z"}, {"state", "fz"}};
   if (axis == "spin" || axis == "omega") return {{"state", "spin"}, {"state", "omega"}};
   if (axis == "mu") return {{"friction", "mu"}, {"friction", "alpha_deg"}};
+  if (axis == "y_wheel") return {{"state", "y"}};
   return {{"state", axis}};
 }
 
@@ -219,6 +220,9 @@ std::vector<std::string> ReadAxisNames(const SourceFile& file, const Section& ta
   if (listed("z") && listed("fz")) {
     file.Fail(node, "table.axes",
               "z and fz cannot both be axes: one is prescribed, the other solved for");
+  }
+  if (listed("y") && listed("y_wheel")) {
+    file.Fail(node, "table.axes", "y and y_wheel cannot both be axes: y_wheel determines y");
   }
   if (listed("spin") && listed("omega")) {
     file.Fail(node, "table.axes", "spin and omega cannot both be axes: spin determines omega");
@@ -416,8 +420,22 @@ void ApplyAxisValue(Case& point, std::string_view axis, double value) {
     state.vyaw = value;
   } else if (axis == "mu") {
     point.friction = Friction::Constant(value);
+  } else if (axis == "y_wheel") {
+    // Applied after every other axis (ApplyAxisValues), so that roll is final here.
+    state.y = value + point.wheelset.nominal_radius * state.roll;
   } else {
     throw std::invalid_argument("unknown scene axis \"" + std::string(axis) + "\"");
+  }
+}
+
+/// Sets every axis quantity of a point; y_wheel last, because it depends on roll.
+void ApplyAxisValues(Case& point, const std::vector<SceneAxis>& axes,
+                     const std::vector<double>& values) {
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (axes[i].name != "y_wheel") ApplyAxisValue(point, axes[i].name, values[i]);
+  }
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (axes[i].name == "y_wheel") ApplyAxisValue(point, axes[i].name, values[i]);
   }
 }
 
@@ -493,8 +511,9 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
       }
     }
   }
-  for (const SceneAxis& axis : scene.axes)
-    ApplyAxisValue(scene.base, axis.name, axis.values.front());
+  std::vector<double> first;
+  for (const SceneAxis& axis : scene.axes) first.push_back(axis.values.front());
+  ApplyAxisValues(scene.base, scene.axes, first);
 
   scene.outputs = ReadOutputs(file, table, scene.base.state.force_prescribed());
   const Section refine(table, "refine");
@@ -526,13 +545,17 @@ std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed) {
 
 std::string_view SceneQuantityUnit(std::string_view name) {
   static const std::pair<std::string_view, std::string_view> kUnits[] = {
-      {"y", "mm"},        {"z", "mm"},         {"fz", "N"},
-      {"roll", "rad"},    {"yaw", "rad"},      {"spin", "-"},
-      {"omega", "rad/s"}, {"vy", "mm/s"},      {"vyaw", "rad/s"},
-      {"mu", "-"},        {"fx", "N"},         {"fy", "N"},
-      {"mx", "N*mm"},     {"my", "N*mm"},      {"mz", "N*mm"},
-      {"fx_ws", "N"},     {"fy_ws", "N"},      {"fz_ws", "N"},
-      {"n_patches", "-"}, {"contact_y", "mm"}, {"contact_angle", "rad"},
+      {"y", "mm"},         {"z", "mm"},
+      {"fz", "N"},         {"roll", "rad"},
+      {"yaw", "rad"},      {"spin", "-"},
+      {"omega", "rad/s"},  {"vy", "mm/s"},
+      {"vyaw", "rad/s"},   {"mu", "-"},
+      {"y_wheel", "mm"},   {"fx", "N"},
+      {"fy", "N"},         {"mx", "N*mm"},
+      {"my", "N*mm"},      {"mz", "N*mm"},
+      {"fx_ws", "N"},      {"fy_ws", "N"},
+      {"fz_ws", "N"},      {"n_patches", "-"},
+      {"contact_y", "mm"}, {"contact_angle", "rad"},
       {"pmax", "N/mm^2"},
   };
   for (const auto& [quantity, unit] : kUnits) {
@@ -554,8 +577,8 @@ Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values) {
       throw InputError(scene.base.source_name + ": table axis " + name + " = " +
                        io::FormatNumber(axis_values[i]) + ": " + problem);
     }
-    io::ApplyAxisValue(point, name, axis_values[i]);
   }
+  io::ApplyAxisValues(point, scene.axes, axis_values);
   return point;
 }
 

@@ -74,8 +74,12 @@ struct Scene {
 };
 
 /// Allowed axis names (SPEC §4.1).
-inline constexpr std::string_view kSceneAxisNames[] = {"y",    "z",     "fz", "roll", "yaw",
-                                                       "spin", "omega", "vy", "vyaw", "mu"};
+/// `y_wheel` is the lateral position of the wheel at its contact, y − r0·roll (r0 the nominal
+/// radius): a wheelset roll of φ moves the wheel's running surface sideways by about r0·φ at
+/// the rail, so the tread-to-flange transition lies at nearly the same y_wheel for every roll,
+/// where on a y axis it moves by ±r0·φ. It replaces `y` on a table that also varies roll.
+inline constexpr std::string_view kSceneAxisNames[] = {
+    "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vyaw", "mu", "y_wheel"};
 
 /// Allowed output names (SPEC §4.2). `z` requires a prescribed fz.
 inline constexpr std::string_view kSceneOutputNames[] = {
