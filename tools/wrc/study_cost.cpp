@@ -1,4 +1,4 @@
-// `wrc study solver` and `wrc study tables` (SPEC §7, issue 8): what accuracy costs in time.
+// `wrc study solver` and `wrc study tables`: what accuracy costs in time.
 
 #include <chrono>
 #include <cmath>
@@ -12,7 +12,11 @@
 #include <vector>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/verify.h"
 #include "wrc/case.h"
+#include "wrc/errors.h"
+#include "wrc/generator.h"
+#include "wrc/scene.h"
 #include "wrc/wheelrail.h"
 
 namespace wrc::cli {
@@ -25,13 +29,6 @@ double Seconds(std::chrono::steady_clock::time_point t0) {
 }
 
 int Shell(const std::string& command) { return std::system(command.c_str()); }
-
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Solver accuracy against cost: the Manchester states of tables/mbench.toml's y range (curved,
 // fz = 10 kN) at several element sizes; errors against the finest grid.
@@ -112,105 +109,177 @@ int StudySolver(const fs::path& out, const fs::path& source_dir, const std::stri
   return kExitOk;
 }
 
-// Table accuracy against cost: tables/demo.toml at its own density and with every step
-// halved, each generated and verified.
-int StudyTables(const fs::path& out, const fs::path& source_dir, const std::string& exe) {
-  fs::create_directories(out);
-  const std::string base = ReadAll(source_dir / "tables" / "demo.toml");
-  std::ofstream summary(out / "tables.md");
-  std::ofstream csv(out / "tables.csv");
-  csv << "density,points,generate_s,file_bytes,lookup_ns,fy_max_rel,fy_rms,z_rms_um\n";
-  summary << "| table | points | generate (s) | file (kB) | lookup (ns) | fy max_rel | fy rms (N) |"
-          << " z rms (µm) |\n|---|---|---|---|---|---|---|---|\n";
-  for (int level = 0; level < 3; ++level) {
-    // Halve every axis step per level by inserting midpoints into explicit lists or halving
-    // 'step' values of ranges (the demo scene uses ranges with steps and lists).
-    std::string text = base;
-    std::string::size_type pos = 0;
-    while ((pos = text.find("step = ", pos)) != std::string::npos) {
-      pos += 7;
-      const std::string::size_type end = text.find_first_of(" }", pos);
-      const double step = std::stod(text.substr(pos, end - pos)) / std::pow(2.0, level);
-      text.replace(pos, end - pos, std::to_string(step));
-    }
-    // Explicit axis lists after `axes = [...]`: insert midpoints level times.
-    {
-      std::istringstream lines(text);
-      std::ostringstream rebuilt;
-      std::string line;
-      bool in_table = false;
-      std::size_t points = 1;
-      while (std::getline(lines, line)) {
-        if (line.rfind("[table]", 0) == 0) in_table = true;
-        const auto open = line.find("= ["), close = line.find(']');
-        if (in_table && line.rfind("axes", 0) != 0 && line.rfind("outputs", 0) != 0 &&
-            open != std::string::npos && close != std::string::npos) {
-          std::vector<double> v;
-          std::istringstream items(line.substr(open + 3, close - open - 3));
-          std::string item;
-          while (std::getline(items, item, ',')) v.push_back(std::stod(item));
-          for (int l = 0; l < level; ++l) {
-            std::vector<double> w;
-            for (std::size_t k = 0; k < v.size(); ++k) {
-              if (k > 0) w.push_back(0.5 * (v[k - 1] + v[k]));
-              w.push_back(v[k]);
-            }
-            v = w;
-          }
-          std::ostringstream list;
-          list.precision(12);
-          for (std::size_t k = 0; k < v.size(); ++k) list << (k ? ", " : "") << v[k];
-          line = line.substr(0, open + 3) + list.str() + "]";
-        }
-        rebuilt << line << '\n';
+// ---- tables: accuracy against points, size and time -----------------------------------------
+
+struct TableRow {
+  std::string kind;  // "uniform" or "refined"
+  double target = 0.0;
+  std::size_t points = 0;
+  double generate_s = 0.0;
+  std::uintmax_t bytes = 0;
+  // Per mode (0 linear, 1 cubic): the largest p95 / max of the force errors relative to the
+  // local load, z's p95 (mm), the lookup time.
+  double force_p95[2] = {}, force_max[2] = {}, force_rms[2] = {}, z_p95[2] = {}, lookup_ns[2] = {};
+  std::string axes;
+};
+
+std::vector<double> Linspace(double first, double last, std::size_t n) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = n == 1 ? first : first + (last - first) * static_cast<double>(i) / (n - 1);
+  }
+  if (n > 1) v.back() = last;
+  return v;
+}
+
+double JsonNumber(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; }
+
+void Measure(const fs::path& table, int samples, std::uint64_t seed, int threads, TableRow* row) {
+  VerifyOptions options;
+  options.table = table.string();
+  options.samples = samples;
+  options.seed = seed;
+  options.threads = threads;
+  const Verification v = VerifyTable(options);
+  for (int mode = 0; mode < 2; ++mode) {
+    const nlohmann::json& m = v.report["interpolation"][mode == 0 ? "linear" : "cubic"];
+    for (const std::string& name : v.output_names) {
+      const nlohmann::json& o = m["outputs"][name];
+      if (IsForceOutput(name)) {
+        row->force_p95[mode] = std::max(row->force_p95[mode], JsonNumber(o["load"]["p95"]));
+        row->force_max[mode] = std::max(row->force_max[mode], JsonNumber(o["load"]["max"]));
+        row->force_rms[mode] = std::max(row->force_rms[mode], JsonNumber(o["load"]["rms"]));
       }
-      (void)points;
-      text = rebuilt.str();
+      if (name == "z") row->z_p95[mode] = JsonNumber(o["p95_abs"]);
     }
-    const fs::path scene = out / ("tables_" + std::to_string(level) + ".toml");
-    const fs::path table = out / ("tables_" + std::to_string(level) + ".h5");
-    // Profile paths of the demo are relative to tables/.
-    std::string fixed = text;
-    const std::string key = "profiles/";
-    for (std::string::size_type p = 0; (p = fixed.find("\"" + key, p)) != std::string::npos;) {
-      fixed.insert(p + 1, fs::absolute(source_dir / "tables").string() + "/");
-      p += key.size() + 2;
+    row->lookup_ns[mode] = 1e9 * JsonNumber(m["lookup_time_s"]["mean"]);
+  }
+  row->bytes = fs::file_size(table);
+}
+
+GenerateSummary Generate(const Scene& scene, const fs::path& table, int threads) {
+  fs::remove(table);
+  std::error_code ignored;
+  fs::remove(fs::path(table.string() + ".journal"), ignored);
+  fs::remove_all(fs::path(table.string() + ".refine"), ignored);
+  GenerateOptions options;
+  options.output = table;
+  options.threads = threads;
+  options.progress = ProgressMode::kOff;
+  options.handle_signals = true;
+  const GenerateSummary summary = GenerateTable(scene, options);
+  if (!summary.complete) throw InputError("generating " + table.string() + " was interrupted");
+  return summary;
+}
+
+std::string AxesText(const std::vector<SceneAxis>& axes) {
+  std::string text;
+  for (const SceneAxis& a : axes) {
+    text += (text.empty() ? "" : " × ") + a.name + " " + std::to_string(a.values.size());
+  }
+  return text;
+}
+
+void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
+                       const std::vector<TableRow>& rows, int samples, std::uint64_t seed) {
+  std::ofstream csv(out / "tables.csv");
+  csv << "kind,target,points,generate_s,file_bytes,force_p95_linear,force_rms_linear,"
+         "force_max_linear,z_p95_linear_mm,lookup_ns_linear,force_p95_cubic,force_rms_cubic,"
+         "force_max_cubic,z_p95_cubic_mm,lookup_ns_cubic,axes\n";
+  csv.precision(6);
+  std::ofstream md(out / "tables.md");
+  md << "Tables of `" << scene_path.filename().string() << "`, " << samples
+     << " uniform random samples (seed " << seed
+     << ") re-solved exactly. Force errors: the largest over the force outputs, as a fraction "
+        "of the local wheel load.\n\n"
+     << "| table | points | generate (s) | file (MB) | p95 lin | rms lin | max lin | p95 cub | "
+        "rms cub | z p95 lin (µm) | lookup lin / cub (ns) |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const TableRow& r : rows) {
+    csv << r.kind << ',' << r.target << ',' << r.points << ',' << r.generate_s << ',' << r.bytes;
+    for (int m = 0; m < 2; ++m) {
+      csv << ',' << r.force_p95[m] << ',' << r.force_rms[m] << ',' << r.force_max[m] << ','
+          << r.z_p95[m] << ',' << r.lookup_ns[m];
     }
-    std::ofstream(scene) << fixed;
-    fs::remove(table);
-    fs::remove(fs::path(table.string() + ".journal"));
-    const auto t0 = std::chrono::steady_clock::now();
-    if (Shell("'" + exe + "' generate '" + scene.string() + "' -o '" + table.string() +
-              "' --quiet") != 0) {
-      std::cerr << "tables study: generate failed for level " << level << '\n';
-      return kExitGateFailed;
-    }
-    const double generate = Seconds(t0);
-    const fs::path report = out / ("verify_" + std::to_string(level) + ".json");
-    Shell("'" + exe + "' verify '" + table.string() + "' --samples 100 --seed 3 --json > '" +
-          report.string() + "'");
-    const auto j = nlohmann::json::parse(ReadAll(report));
-    const double lookup = 1e9 * j["lookup_time_s"]["mean"].get<double>();
-    const nlohmann::json info = nlohmann::json::parse([&] {
-      const fs::path info_file = out / ("info_" + std::to_string(level) + ".json");
-      Shell("'" + exe + "' info '" + table.string() + "' --json > '" + info_file.string() + "'");
-      return ReadAll(info_file);
-    }());
-    std::size_t points = 1;
-    for (const auto& axis : info["axes"]) points *= axis["size"].get<std::size_t>();
-    const auto& fy = j["outputs"]["fy"];
-    const double z_rms =
-        j["outputs"].contains("z") ? 1e3 * j["outputs"]["z"]["rms"].get<double>() : NAN;
-    const auto bytes = fs::file_size(table);
-    char line[256];
+    csv << ",\"" << r.axes << "\"\n";
+    char line[400];
     std::snprintf(line, sizeof line,
-                  "| demo, steps / %d | %zu | %.1f | %.0f | %.0f | %.3g | %.3g | %.3g |\n",
-                  1 << level, points, generate, bytes / 1024.0, lookup, fy["max_rel"].get<double>(),
-                  fy["rms"].get<double>(), z_rms);
-    summary << line;
-    csv << level << ',' << points << ',' << generate << ',' << bytes << ',' << lookup << ','
-        << fy["max_rel"].get<double>() << ',' << fy["rms"].get<double>() << ',' << z_rms << '\n';
-    std::cerr << "tables study: level " << level << " done\n";
+                  "| %s%s | %zu | %.0f | %.1f | %.2f %% | %.2f %% | %.1f %% | %.2f %% | %.2f %% | "
+                  "%.1f | %.0f / %.0f |\n",
+                  r.kind.c_str(),
+                  r.kind == "refined" ? (" " + std::to_string(r.target)).substr(0, 7).c_str() : "",
+                  r.points, r.generate_s, r.bytes / 1e6, 100 * r.force_p95[0], 100 * r.force_rms[0],
+                  100 * r.force_max[0], 100 * r.force_p95[1], 100 * r.force_rms[1],
+                  1e3 * r.z_p95[0], r.lookup_ns[0], r.lookup_ns[1]);
+    md << line;
+  }
+  csv.close();
+  std::ofstream gp(out / "tables.gp");
+  gp << "set terminal pngcairo size 1000,650 font ',10'\nset output 'tables.png'\n"
+     << "set datafile separator ','\nset logscale xy\nset grid\nset key top right\n"
+     << "set xlabel 'table points'\nset ylabel 'p95 force error, % of the local wheel load'\n"
+     << "set title \"" << scene_path.filename().string()
+     << ": interpolation error against table size (" << samples << " exact solves)\"\n"
+     << "plot 'tables.csv' using ($3):(strcol(1) eq 'uniform' ? 100*$6 : 1/0) with linespoints "
+        "pt 5 lc rgb '#b2182b' title 'uniform, multilinear', "
+     << "'' using ($3):(strcol(1) eq 'uniform' ? 100*$11 : 1/0) with linespoints pt 4 lc rgb "
+        "'#ef8a62' title 'uniform, cubic', "
+     << "'' using ($3):(strcol(1) eq 'refined' ? 100*$6 : 1/0) with linespoints pt 7 lc rgb "
+        "'#2166ac' title 'refined, multilinear', "
+     << "'' using ($3):(strcol(1) eq 'refined' ? 100*$11 : 1/0) with linespoints pt 6 lc rgb "
+        "'#67a9cf' title 'refined, cubic', "
+     << "1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
+  gp.close();
+  if (Shell("cd '" + out.string() + "' && gnuplot tables.gp") != 0) {
+    std::cerr << "wrc study tables: gnuplot failed (is gnuplot installed?)\n";
+  }
+}
+
+// Refined tables at several targets and, for each, a uniform table with the same node count
+// per axis over the same ranges; all verified at the same random points.
+int StudyTables(const fs::path& scene_path, const fs::path& out, const std::vector<double>& targets,
+                int samples, std::uint64_t seed, int threads) {
+  const Scene scene = LoadScene(scene_path);
+  fs::create_directories(out);
+  std::vector<TableRow> rows;
+  for (const double target : targets) {
+    Scene refined = scene;
+    if (!refined.refine) refined.refine = RefineSettings{};
+    refined.refine->load_fraction = target;
+    const fs::path refined_path = out / ("refined_" + std::to_string(target) + ".h5");
+    const auto t0 = std::chrono::steady_clock::now();
+    const GenerateSummary summary = Generate(refined, refined_path, threads);
+    TableRow row;
+    row.kind = "refined";
+    row.target = target;
+    row.points = summary.points;
+    row.generate_s = Seconds(t0);
+    row.axes = AxesText(summary.axes);
+    Measure(refined_path, samples, seed, threads, &row);
+    rows.push_back(row);
+    std::cerr << "tables study: refined to " << target << ": " << row.points << " points ("
+              << row.axes << "), p95 " << 100 * row.force_p95[0] << " % of the load\n";
+
+    Scene uniform = scene;
+    uniform.refine.reset();
+    for (std::size_t a = 0; a < uniform.axes.size(); ++a) {
+      std::vector<double>& v = uniform.axes[a].values;
+      v = Linspace(v.front(), v.back(), summary.axes[a].values.size());
+    }
+    const fs::path uniform_path = out / ("uniform_" + std::to_string(target) + ".h5");
+    const auto t1 = std::chrono::steady_clock::now();
+    const GenerateSummary u = Generate(uniform, uniform_path, threads);
+    TableRow urow;
+    urow.kind = "uniform";
+    urow.target = target;
+    urow.points = u.points;
+    urow.generate_s = Seconds(t1);
+    urow.axes = AxesText(uniform.axes);
+    Measure(uniform_path, samples, seed, threads, &urow);
+    rows.push_back(urow);
+    std::cerr << "tables study: uniform with the same counts: p95 " << 100 * urow.force_p95[0]
+              << " % of the load\n";
+    WriteTablesReport(out, scene_path, rows, samples, seed);  // after each pair: nothing lost
   }
   return kExitOk;
 }
@@ -231,14 +300,27 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       *exit_code = kExitBadInput;
     }
   });
-  auto* tables = study.add_subcommand("tables", "Table accuracy against cost over densities");
-  tables->add_option("--out", *out, "Output directory");
-  tables->add_option("--source", *source, "The wrc checkout (for tables/demo.toml)");
-  auto exe = std::make_shared<std::string>("build/wrc");
-  tables->add_option("--wrc", *exe, "The wrc binary used for generate/verify");
+  auto* tables = study.add_subcommand(
+      "tables", "Table accuracy against size and time: refined and uniform tables of a scene");
+  auto scene = std::make_shared<std::string>();
+  auto targets = std::make_shared<std::vector<double>>(std::vector<double>{0.04, 0.02, 0.01});
+  auto samples = std::make_shared<int>(300);
+  auto seed = std::make_shared<std::uint64_t>(1);
+  auto threads = std::make_shared<int>(0);
+  auto tables_out = std::make_shared<std::string>("study-tables");
+  tables->add_option("SCENE", *scene, "Scene file (any; its axes give the ranges)")->required();
+  tables->add_option("--out", *tables_out, "Output directory")->capture_default_str();
+  tables->add_option("--targets", *targets, "Refinement targets, fractions of the local wheel load")
+      ->delimiter(',')
+      ->capture_default_str();
+  tables->add_option("--samples", *samples, "Exact solves per table")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  tables->add_option("--seed", *seed, "Seed of the sample points")->capture_default_str();
+  tables->add_option("--threads", *threads, "Worker threads (default: all cores)");
   tables->callback([=]() {
     try {
-      *exit_code = StudyTables(*out, *source, fs::absolute(*exe).string());
+      *exit_code = StudyTables(*scene, *tables_out, *targets, *samples, *seed, *threads);
     } catch (const std::exception& e) {
       std::cerr << "wrc study tables: error: " << e.what() << '\n';
       *exit_code = kExitBadInput;

@@ -408,3 +408,82 @@ TEST(SceneIo, RejectsSpinAxisWhoseOmegaOverflows) {
 
 }  // namespace
 }  // namespace wrc
+
+namespace wrc {
+namespace {
+
+const std::string kRefinedTable = R"([table]
+axes    = ["y", "fz", "yaw"]
+y       = {from = -4.0, to = 4.0, count = 3}
+fz      = [5000.0, 20000.0]
+yaw     = {from = -0.01, to = 0.01, count = 3}
+outputs = ["fx", "fy", "fz", "n_patches", "z"]
+)";
+
+TEST(SceneRefine, DefaultsAndKeys) {
+  const Scene plain = Parse(SceneWith(kRefinedTable, ""));
+  EXPECT_FALSE(plain.refine.has_value());
+  const Scene scene = Parse(SceneWith(kRefinedTable + "[table.refine]\n", ""));
+  ASSERT_TRUE(scene.refine.has_value());
+  const RefineSettings& r = *scene.refine;
+  EXPECT_DOUBLE_EQ(r.load_fraction, 0.005);
+  EXPECT_EQ(r.outputs, (std::vector<std::string>{"fx", "fy", "fz", "z"}));  // forces and z
+  ASSERT_EQ(r.absolute.count("z"), 1u);
+  EXPECT_DOUBLE_EQ(r.absolute.at("z"), 0.003);
+  EXPECT_EQ(r.max_points, 1'000'000u);
+  EXPECT_EQ(r.samples, 24);
+
+  const Scene custom =
+      Parse(SceneWith(kRefinedTable + "[table.refine]\ntarget = 0.02\nabsolute = {n_patches "
+                                      "= 0.5}\nmax_points = 500\nmin_step = {yaw = 1e-4}\n",
+                      ""));
+  EXPECT_DOUBLE_EQ(custom.refine->load_fraction, 0.02);
+  EXPECT_EQ(custom.refine->outputs, (std::vector<std::string>{"fx", "fy", "fz", "n_patches"}));
+  EXPECT_EQ(custom.refine->max_points, 500u);
+  EXPECT_DOUBLE_EQ(custom.refine->min_step.at("yaw"), 1e-4);
+}
+
+TEST(SceneRefine, RejectsBadSettings) {
+  const auto error = [](const std::string& refine) {
+    return ErrorOf(SceneWith(kRefinedTable + "[table.refine]\n" + refine, ""));
+  };
+  EXPECT_NE(error("taget = 0.01\n").find("table.refine.taget"), std::string::npos);
+  EXPECT_NE(error("taget = 0.01\n").find("did you mean table.refine.target"), std::string::npos);
+  EXPECT_NE(error("target = 2.0\n").find("table.refine.target"), std::string::npos);
+  EXPECT_NE(error("absolute = {fy = 1.0}\n").find("not a non-force output"), std::string::npos);
+  EXPECT_NE(error("outputs = [\"n_patches\"]\n").find("has no target"), std::string::npos);
+  EXPECT_NE(error("max_points = 10\n").find("table.refine.max_points"), std::string::npos);
+  EXPECT_NE(error("min_step = {roll = 0.1}\n").find("not an axis"), std::string::npos);
+  EXPECT_NE(error("samples = 0\n").find("table.refine.samples"), std::string::npos);
+  // A prescribed-z scene knows the load only from the solved fz.
+  std::string z_table = kRefinedTable;
+  z_table.replace(z_table.find("\"fz\", \"yaw\""), 11, "\"z\", \"yaw\"");
+  z_table.replace(z_table.find("fz      = [5000.0, 20000.0]"), 27, "z = [0.0, 0.1]");
+  z_table.replace(z_table.find("\"fz\", \"n_patches\", \"z\""), 22, "\"n_patches\"");
+  EXPECT_NE(ErrorOf(SceneWith(z_table + "[table.refine]\n", "")).find("fz is among"),
+            std::string::npos);
+}
+
+TEST(SceneRefine, WheelLateralPositionFollowsRoll) {
+  const std::string table = R"([table]
+axes    = ["y_wheel", "roll"]
+y_wheel = [-2.0, 0.0, 2.0]
+roll    = [-0.002, 0.002]
+outputs = ["fy"]
+)";
+  const Scene scene = Parse(WithoutLine(kSceneCase, "roll = 0.0") + "fz = 10000.0\n" + table);
+  // y = y_wheel + r0·roll, whichever order the axes come in.
+  const Case c = CaseAtPoint(scene, {1.5, 0.002});
+  EXPECT_DOUBLE_EQ(c.state.y, 1.5 + 460.0 * 0.002);
+  EXPECT_DOUBLE_EQ(c.state.roll, 0.002);
+  EXPECT_EQ(SceneQuantityUnit("y_wheel"), "mm");
+  const std::string both = R"([table]
+axes = ["y", "y_wheel"]
+y = [0.0, 1.0]
+y_wheel = [0.0, 1.0]
+)";
+  EXPECT_NE(ErrorOf(SceneWith(both)).find("y and y_wheel"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace wrc
