@@ -212,3 +212,46 @@ TEST_F(WheelsetTest, FlagsSayWhereTheTableCannotServe) {
 
 }  // namespace
 }  // namespace wrc
+
+namespace wrc {
+namespace {
+
+// A table over y_wheel = y − r0·roll and roll: the wheelset API takes the pose (y, roll) and
+// the wheel must read its own y_wheel, checked at every node against direct solves.
+TEST(WheelsetYWheel, PoseMapsToTheWheelsLateralPosition) {
+  ScratchDir dir("wheelset_y_wheel");
+  const Scene scene = LoadScene(test::WriteFile(
+      dir / "scene.toml",
+      test::TinyScene("axes = [\"y_wheel\", \"roll\"]\ny_wheel = [-2.0, 0.0, 2.0]\n"
+                      "roll = [-0.002, 0.002]\noutputs = [\"fx\", \"fy\", \"fz\", \"mx\", "
+                      "\"my\", \"mz\", \"contact_y\", \"contact_angle\"]",
+                      "fz = 10000.0\nvelocity = 20000.0")));
+  GenerateOptions options;
+  options.output = dir / "table.h5";
+  options.threads = 2;
+  options.progress = ProgressMode::kOff;
+  options.warm_start = false;
+  options.mpi = MpiMode::kOff;
+  ASSERT_TRUE(GenerateTable(scene, options).complete);
+  const Table table(options.output.string());
+  const WheelsetTable wheelset(table);
+  for (const double y_wheel : scene.axes[0].values) {
+    for (const double roll : scene.axes[1].values) {
+      SCOPED_TRACE("y_wheel " + std::to_string(y_wheel) + " roll " + std::to_string(roll));
+      WheelsetTable::State state;
+      state.y = y_wheel + kRadius * roll;
+      state.roll = roll;
+      state.velocity = kV0;
+      state.omega = OmegaFromSpin(0.0, kV0, kRadius);
+      int flags = -1;
+      const wrc_wheelset_result result = wheelset.eval(state, &flags);
+      EXPECT_EQ(flags, 0);
+      const Case c = CaseAtPoint(scene, {y_wheel, roll});
+      EXPECT_DOUBLE_EQ(c.state.y, state.y);
+      ExpectSameContact(result.wheel[WRC_RIGHT], SolveWheelRail(c));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace wrc
