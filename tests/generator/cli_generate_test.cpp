@@ -276,6 +276,29 @@ TEST_F(CliGenerateTest, TwoMpiRanksGiveTheSameTableAsOneProcess) {
   test::ExpectIdenticalTables(reference_, resumed);
 }
 
+// A refinement under MPI: rank 0 decides the nodes and sends each pass's axes to the other
+// rank, which solves its share of every grid; the table equals a single-process refinement.
+TEST_F(CliGenerateTest, TwoMpiRanksRefineToTheSameTableAsOneProcess) {
+  if (!GeneratorSupportsMpi()) GTEST_SKIP() << "wrc was built without MPI support";
+  const fs::path scene = test::WriteFile(
+      *dir_ / "refine.toml",
+      test::TinyScene("axes = [\"yaw\", \"y\"]\nyaw = [0.0, 0.004]\ny = {from = 2.0, to = "
+                      "8.0, count = 3}\noutputs = [\"fx\", \"fy\", \"fz\", \"z\"]\n"
+                      "[table.refine]\ntarget = 0.01\nsamples = 2\nmax_passes = 3\n"));
+  const fs::path single = *dir_ / "refine_single.h5", mpi = *dir_ / "refine_mpi.h5";
+  GenerateOptions options;
+  options.output = single;
+  options.threads = 1;
+  options.progress = ProgressMode::kOff;
+  options.mpi = MpiMode::kOff;
+  ASSERT_TRUE(GenerateTable(LoadScene(scene), options).complete);
+  const test::CommandResult result =
+      test::RunCommand(Mpirun() + Generate(scene, mpi, "--threads 1 --quiet"), dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+  EXPECT_NE(result.out.find("2 MPI ranks"), std::string::npos) << result.out;
+  test::ExpectIdenticalTables(single, mpi);
+}
+
 TEST_F(CliGenerateTest, ResumingWithAnotherSceneIsRefused) {
   const fs::path table = *dir_ / "other.h5";
   const fs::path other_scene = test::WriteFile(*dir_ / "other.toml", KillScene() + "# edited\n");

@@ -215,7 +215,7 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
   }
   csv.close();
   std::ofstream gp(out / "tables.gp");
-  gp << "set terminal pngcairo size 1000,650 font ',10'\nset output 'tables.png'\n"
+  gp << "set terminal pngcairo noenhanced size 1000,650 font ',10'\nset output 'tables.png'\n"
      << "set datafile separator ','\nset logscale xy\nset grid\nset key top right\n"
      << "set xlabel 'table points'\nset ylabel 'p95 force error, % of the local wheel load'\n"
      << "set title \"" << scene_path.filename().string()
@@ -235,6 +235,25 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
   }
 }
 
+// One table of the study: generated, timed and verified; *axes receives its nodes.
+TableRow GenerateAndMeasure(const Scene& scene, const std::string& kind, double target,
+                            const fs::path& path, int samples, std::uint64_t seed, int threads,
+                            std::vector<SceneAxis>* axes) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const GenerateSummary summary = Generate(scene, path, threads);
+  TableRow row;
+  row.kind = kind;
+  row.target = target;
+  row.points = summary.points;
+  row.generate_s = Seconds(t0);
+  row.axes = AxesText(summary.axes);
+  *axes = summary.axes;
+  Measure(path, samples, seed, threads, &row);
+  std::cerr << "tables study: " << kind << " (target " << target << "): " << row.points
+            << " points (" << row.axes << "), p95 " << 100 * row.force_p95[0] << " % of the load\n";
+  return row;
+}
+
 // Refined tables at several targets and, for each, a uniform table with the same node count
 // per axis over the same ranges; all verified at the same random points.
 int StudyTables(const fs::path& scene_path, const fs::path& out, const std::vector<double>& targets,
@@ -246,39 +265,19 @@ int StudyTables(const fs::path& scene_path, const fs::path& out, const std::vect
     Scene refined = scene;
     if (!refined.refine) refined.refine = RefineSettings{};
     refined.refine->load_fraction = target;
-    const fs::path refined_path = out / ("refined_" + std::to_string(target) + ".h5");
-    const auto t0 = std::chrono::steady_clock::now();
-    const GenerateSummary summary = Generate(refined, refined_path, threads);
-    TableRow row;
-    row.kind = "refined";
-    row.target = target;
-    row.points = summary.points;
-    row.generate_s = Seconds(t0);
-    row.axes = AxesText(summary.axes);
-    Measure(refined_path, samples, seed, threads, &row);
-    rows.push_back(row);
-    std::cerr << "tables study: refined to " << target << ": " << row.points << " points ("
-              << row.axes << "), p95 " << 100 * row.force_p95[0] << " % of the load\n";
-
+    std::vector<SceneAxis> nodes;
+    rows.push_back(GenerateAndMeasure(refined, "refined", target,
+                                      out / ("refined_" + std::to_string(target) + ".h5"), samples,
+                                      seed, threads, &nodes));
     Scene uniform = scene;
     uniform.refine.reset();
     for (std::size_t a = 0; a < uniform.axes.size(); ++a) {
       std::vector<double>& v = uniform.axes[a].values;
-      v = Linspace(v.front(), v.back(), summary.axes[a].values.size());
+      v = Linspace(v.front(), v.back(), nodes[a].values.size());
     }
-    const fs::path uniform_path = out / ("uniform_" + std::to_string(target) + ".h5");
-    const auto t1 = std::chrono::steady_clock::now();
-    const GenerateSummary u = Generate(uniform, uniform_path, threads);
-    TableRow urow;
-    urow.kind = "uniform";
-    urow.target = target;
-    urow.points = u.points;
-    urow.generate_s = Seconds(t1);
-    urow.axes = AxesText(uniform.axes);
-    Measure(uniform_path, samples, seed, threads, &urow);
-    rows.push_back(urow);
-    std::cerr << "tables study: uniform with the same counts: p95 " << 100 * urow.force_p95[0]
-              << " % of the load\n";
+    rows.push_back(GenerateAndMeasure(uniform, "uniform", target,
+                                      out / ("uniform_" + std::to_string(target) + ".h5"), samples,
+                                      seed, threads, &nodes));
     WriteTablesReport(out, scene_path, rows, samples, seed);  // after each pair: nothing lost
   }
   return kExitOk;

@@ -181,7 +181,7 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
   const fs::path script = fs::path(png).replace_extension(".gp");
   {
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 1000,760 font ',10'\n"
+    gp << "set terminal pngcairo noenhanced size 1000,760 font ',10'\n"
        << "set output '" << png.string() << "'\n"
        << "set title \"" << fs::path(opt.verify.table).filename().string() << ": error of "
        << output << " (table − solver" << (force ? ", % of the local wheel load" : "") << ")\\n"
