@@ -67,10 +67,10 @@ std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
 
 /// What one pass decides from its grid and its samples' exact results.
 struct RefineDecision {
-  std::vector<SceneAxis> next;    ///< The axes of the next pass (equal: stop).
-  std::size_t above_target = 0;   ///< Intervals whose sampled midpoint error exceeds the target.
-  std::size_t refused = 0;        ///< Of those, intervals left unsplit by the point budget.
-  double worst = 0.0;             ///< Largest sampled midpoint error, in units of the target.
+  std::vector<SceneAxis> next;   ///< The axes of the next pass (equal: stop).
+  std::size_t above_target = 0;  ///< Intervals whose sampled midpoint error exceeds the target.
+  std::size_t refused = 0;       ///< Of those, intervals left unsplit by the point budget.
+  double worst = 0.0;            ///< Largest sampled midpoint error, in units of the target.
 };
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
