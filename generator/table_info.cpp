@@ -46,6 +46,9 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   for (const std::string& name : axes.ReadStringArrayAttribute("order")) {
     const h5::Dataset dataset = axes.OpenDataset(name);
     info.axes.push_back({name, OptionalString(dataset, "unit"), dataset.Read<double>()});
+    if (info.axes.back().values.empty()) {
+      throw InputError(path.string() + ":/axes/" + name + ": the axis is empty");
+    }
     shape.push_back(info.axes.back().values.size());
   }
   info.points = 1;

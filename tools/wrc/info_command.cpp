@@ -10,6 +10,7 @@
 
 #include "tools/wrc/commands.h"
 #include "wrc/generator.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::cli {
 namespace {
@@ -191,6 +192,9 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->callback([=]() {
     try {
+      // The runtime's validation first (types, shapes, axes, values, format version): what
+      // info reads afterwards has passed every check a simulator's open makes.
+      const Table validated(*path);
       const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {
         std::cout << InfoJson(*path, info).dump(1) << '\n';

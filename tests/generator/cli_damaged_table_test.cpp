@@ -1,0 +1,120 @@
+// `wrc info` and `wrc verify` on damaged or invalid tables: exit 2 with a message naming the
+// file and the problem, never a crash and never a description of numbers that are not there.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tests/generator/generator_test_util.h"
+#include "tests/runtime/table_writer.h"
+
+namespace wrc::test {
+namespace {
+
+TableContent ValidTable() {
+  TableContent content;
+  content.axes = {{"y", {-2.0, -1.0, 0.0, 1.5, 2.0}, "mm"}, {"roll", {-0.002, 0.0, 0.002}, "rad"}};
+  content.outputs = {"fy", "fx"};
+  content.function = [](int k, const std::vector<double>& x) { return 100.0 * k + x[0]; };
+  content.format = h5::FileFormat::kEarliest;
+  return content;
+}
+
+// Runs info and verify on the table; both must exit 2 and name `problem` on stderr.
+void ExpectRefused(const fs::path& table, const std::string& problem) {
+  for (const std::string command : {" info ", " info --json ", " verify --samples 2 "}) {
+    const CommandResult result =
+        RunCommand(Quoted(WrcBinary()) + command + Quoted(table.string()), table.parent_path());
+    EXPECT_EQ(result.exit_code, 2) << command << ": " << result.err;
+    EXPECT_NE(result.err.find(problem), std::string::npos) << command << ": " << result.err;
+    EXPECT_TRUE(result.out.empty() || command == " verify --samples 2 ") << result.out;
+  }
+}
+
+template <typename Edit>
+fs::path WriteEdited(const ScratchDir& dir, const std::string& name, TableContent content,
+                     Edit edit) {
+  const fs::path path = dir / name;
+  WriteTable(path.string(), content);
+  h5::File file = h5::File::Open(path.string(), h5::File::Mode::kReadWrite);
+  edit(file);
+  return path;
+}
+
+TEST(CliDamagedTable, AxisOfZeroLength) {
+  ScratchDir dir("damaged_empty_axis");
+  TableContent content = ValidTable();
+  content.axes[1].values.clear();
+  const fs::path table = dir / "empty.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "is empty");
+}
+
+TEST(CliDamagedTable, AxisNotAscending) {
+  ScratchDir dir("damaged_descending");
+  TableContent content = ValidTable();
+  content.axes[0].values = {-2.0, -1.0, 0.5, 0.0, 2.0};
+  const fs::path table = dir / "descending.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "strictly ascending");
+}
+
+TEST(CliDamagedTable, NonFiniteValueAtAnOkNode) {
+  ScratchDir dir("damaged_nan");
+  TableContent content = ValidTable();
+  content.function = [](int k, const std::vector<double>& x) {
+    return k == 1 && x[0] == 0.0 ? std::numeric_limits<double>::quiet_NaN() : x[0];
+  };
+  const fs::path table = dir / "nan.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "non-finite value");
+}
+
+TEST(CliDamagedTable, IntegerOutput) {
+  ScratchDir dir("damaged_int");
+  const fs::path table = WriteEdited(dir, "int.h5", ValidTable(), [](h5::File& file) {
+    h5::Group outputs = file.OpenGroup("outputs");
+    outputs.Remove("fx");
+    outputs.WriteDataset("fx", {5, 3}, std::vector<std::int32_t>(15, 0));
+  });
+  ExpectRefused(table, "must be floating point (float64), is int32");
+}
+
+TEST(CliDamagedTable, UnknownFormatVersion) {
+  ScratchDir dir("damaged_version");
+  const fs::path table = WriteEdited(dir, "v7.h5", ValidTable(), [](h5::File& file) {
+    file.WriteIntAttribute("format_version", 7);
+  });
+  ExpectRefused(table, "format_version' is 7");
+}
+
+// One byte of the float64 datatype messages changed, the size 8 read as 65544.
+TEST(CliDamagedTable, FloatOfAbsurdSize) {
+  ScratchDir dir("damaged_float_size");
+  const fs::path table = dir / "float.h5";
+  WriteTable(table.string(), ValidTable());
+  std::vector<char> bytes;
+  {
+    std::ifstream in(table, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::vector<char> message = {0x11, 0x20, 0x3f, 0x00, 0x08, 0x00, 0x00, 0x00};
+  int patched = 0;
+  for (auto it = bytes.begin();
+       (it = std::search(it, bytes.end(), message.begin(), message.end())) != bytes.end(); ++it) {
+    *(it + 6) = 0x01;
+    ++patched;
+  }
+  ASSERT_GT(patched, 0);
+  std::ofstream(table, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  ExpectRefused(table, "not a standard");
+}
+
+}  // namespace
+}  // namespace wrc::test
