@@ -1,8 +1,14 @@
 // Case files (SPEC §2): TOML to wrc::Case, with every name, type and value checked so that a
 // typo or an impossible value is reported with file, line and key instead of being ignored.
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -504,17 +510,50 @@ Case ReadCase(const toml::table& root, const SourceFile& file,
   return result;
 }
 
-std::string ReadTextFile(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path.string() + ": is a directory, not a file");
+namespace {
+
+// Closes a descriptor when the read is done, however it ends.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
   }
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError(path.string() + ": cannot open file");
-  std::ostringstream contents;
-  contents << stream.rdbuf();
-  if (stream.bad()) throw InputError(path.string() + ": cannot read file");
-  return contents.str();
+};
+
+std::string SystemError(const std::filesystem::path& path, const std::string& what) {
+  return path.string() + ": " + what + ": " + std::strerror(errno);
+}
+
+}  // namespace
+
+std::string ReadTextFile(const std::filesystem::path& path, std::size_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
+  const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+  if (file.fd < 0) throw InputError(SystemError(path, "cannot open file"));
+  struct stat info {};
+  if (::fstat(file.fd, &info) != 0) throw InputError(SystemError(path, "cannot inspect file"));
+  if (S_ISDIR(info.st_mode)) throw InputError(path.string() + ": is a directory, not a file");
+  if (!S_ISREG(info.st_mode)) {
+    throw InputError(path.string() + ": is not a regular file (a device, FIFO or socket)");
+  }
+  const auto too_large = [&] {
+    return InputError(path.string() + ": larger than " + std::to_string(max_bytes >> 20) +
+                      " MiB, too large for an input file");
+  };
+  if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) throw too_large();
+  std::string contents;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(SystemError(path, "cannot read file"));
+    }
+    contents.append(buffer, static_cast<std::size_t>(n));
+    if (contents.size() > max_bytes) throw too_large();  // grew while being read
+  }
+  return contents;
 }
 
 }  // namespace io

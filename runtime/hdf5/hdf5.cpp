@@ -216,6 +216,11 @@ std::vector<H5Z_filter_t> Filters(hid_t dataset, const std::string& where) {
 Error::Error(const std::string& object, const std::string& problem)
     : std::runtime_error(object + ": " + problem), object_(object) {}
 
+void SkipLibraryTermination() {
+  // Fails only when the library is already initialised; then there is nothing left to change.
+  if (H5dont_atexit() < 0) H5Eclear2(H5E_DEFAULT);
+}
+
 std::unique_lock<std::recursive_mutex> LibraryLock() {
   static std::recursive_mutex mutex;
   return std::unique_lock<std::recursive_mutex>(mutex);

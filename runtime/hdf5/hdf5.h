@@ -43,6 +43,11 @@ class Error : public std::runtime_error {
   std::string object_;
 };
 
+/// Tells HDF5 not to close files from its exit handler; call it before any other HDF5 use. A file
+/// whose close failed (a full disk) stays registered in HDF5 1.10, and closing it again at exit
+/// crashes (SIGSEGV in H5F__close_cb). Programs that close every file themselves call this.
+void SkipLibraryTermination();
+
 /// Serialises HDF5 use across threads (recursive: nested wrapper calls may lock again).
 std::unique_lock<std::recursive_mutex> LibraryLock();
 

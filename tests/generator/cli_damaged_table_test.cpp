@@ -1,7 +1,10 @@
 // `wrc info` and `wrc verify` on damaged or invalid tables: exit 2 with a message naming the
 // file and the problem, never a crash and never a description of numbers that are not there.
+// And the table file of `wrc generate`: never written through a FIFO or a planted symlink, and
+// a failed write leaves no half table.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <fstream>
@@ -114,6 +117,64 @@ TEST(CliDamagedTable, FloatOfAbsurdSize) {
   std::ofstream(table, std::ios::binary | std::ios::trunc)
       .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   ExpectRefused(table, "not a standard");
+}
+
+// ---- the table file that `wrc generate` writes ---------------------------------------------
+
+std::string SmallScene() {
+  return TinyScene("axes = [\"y\"]\ny = [0.0, 1.0]\noutputs = [\"fx\", \"fz\"]");
+}
+
+CommandResult Generate(const ScratchDir& dir, const std::string& output,
+                       const std::string& prefix = "") {
+  WriteFile(dir / "scene.toml", SmallScene());
+  return RunCommand(prefix + Quoted(WrcBinary()) + " generate " +
+                        Quoted((dir / "scene.toml").string()) + " -o " + Quoted(output),
+                    dir.path());
+}
+
+TEST(CliGenerateOutput, AFifoIsNotReplaced) {
+  ScratchDir dir("output_fifo");
+  const fs::path fifo = dir / "table.h5";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const CommandResult result = Generate(dir, fifo.string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("is a FIFO"), std::string::npos) << result.err;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST(CliGenerateOutput, ASymlinkPlantedAtTheTemporaryNameIsNotFollowed) {
+  ScratchDir dir("output_symlink");
+  WriteFile(dir / "victim", "keep");
+  fs::create_symlink(dir / "victim", dir / "table.h5.tmp");
+  const CommandResult result = Generate(dir, (dir / "table.h5").string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("symbolic link"), std::string::npos) << result.err;
+  EXPECT_EQ(ReadFile(dir / "victim"), "keep");
+  EXPECT_FALSE(fs::exists(dir / "table.h5"));
+}
+
+// A file-size limit makes the table's writes fail (EFBIG) as a full disk would.
+TEST(CliGenerateOutput, AFullDiskIsExit2AndNoHalfTable) {
+  ScratchDir dir("output_full");
+  const CommandResult result =
+      Generate(dir, (dir / "table.h5").string(), "ulimit -f 16; trap '' XFSZ; ");
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("table.h5.tmp"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(dir / "table.h5"));
+  EXPECT_FALSE(fs::exists(dir / "table.h5.tmp"));
+}
+
+TEST(CliTableCommands, FullStandardOutputIsAnError) {
+  ScratchDir dir("info_full");
+  const fs::path table = dir / "table.h5";
+  WriteTable(table.string(), ValidTable());
+  // RunCommand redirects stdout itself; here stdout is /dev/full.
+  const int status = std::system(
+      (Quoted(WrcBinary()) + " info " + Quoted(table.string()) + " >/dev/full 2>/dev/null")
+          .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
 }
 
 }  // namespace
