@@ -65,12 +65,16 @@ json HalfspaceJson(const HalfspaceResult& r, double seconds) {
     message = "solver reached its iteration limit (normal residual " +
               std::to_string(r.normal_summary.residual) + ", tangential residual " +
               std::to_string(r.tangential_summary.residual) + ")";
+    if (!std::isfinite(r.fn) || !std::isfinite(r.fx) || !std::isfinite(r.fy)) {
+      message = "the solution is not finite";
+    }
   }
   return {{"status", ToString(r.status)},
           {"message", message},
           {"patches", r.status == SolverStatus::kNoContact ? json::array() : json::array({patch})},
           {"iterations", iterations},
-          {"timing_s", {{"total", seconds}}}};
+          {"timing_s", {{"total", seconds}}},
+          {"warnings", r.warnings}};
 }
 
 // Writes the fields as CSV, one row per element of the potential contact area (format in
