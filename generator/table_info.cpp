@@ -33,6 +33,9 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   }
   info.format_version =
       file.HasAttribute("format_version") ? file.ReadIntAttribute("format_version") : 0;
+  if (file.HasAttribute("warnings_count")) {
+    info.warnings_count = file.ReadIntAttribute("warnings_count");
+  }
   for (const std::string& name : file.AttributeNames()) {
     if (name == "format") continue;
     const h5::Attribute attribute = file.OpenAttribute(name);

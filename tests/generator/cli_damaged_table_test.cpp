@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -163,6 +164,39 @@ TEST(CliGenerateOutput, AFullDiskIsExit2AndNoHalfTable) {
   EXPECT_NE(result.err.find("table.h5.tmp"), std::string::npos) << result.err;
   EXPECT_FALSE(fs::exists(dir / "table.h5"));
   EXPECT_FALSE(fs::exists(dir / "table.h5.tmp"));
+}
+
+// Every solved point's warnings are counted in the table (root attribute warnings_count): with
+// a rail profile whose zig-zag is repaired, each of the two points has one.
+TEST(CliGenerateOutput, WarningsAreCountedInTheTable) {
+  ScratchDir dir("output_warnings");
+  std::istringstream in(ReadFile(ProfilePath("MBench_UIC60_v3.prr")));
+  std::ofstream rail(dir / "zigzag.prr");
+  int line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    rail << line << '\n';
+    if (++line_number == 300) {  // the point after it moved back across it
+      std::istringstream fields(line);
+      double y = 0.0, z = 0.0;
+      fields >> y >> z;
+      rail << y - 0.3 << '\t' << z << '\n';
+    }
+  }
+  rail.close();
+  std::string scene = TinyScene("axes = [\"y\"]\ny = [0.0, 1.0]\noutputs = [\"fx\", \"fz\"]");
+  const std::string original = ProfilePath("MBench_UIC60_v3.prr");
+  scene.replace(scene.find(original), original.size(), (dir / "zigzag.prr").string());
+  WriteFile(dir / "scene.toml", scene);
+  const fs::path table = dir / "table.h5";
+  const CommandResult result =
+      RunCommand(Quoted(WrcBinary()) + " generate " + Quoted((dir / "scene.toml").string()) +
+                     " -o " + Quoted(table.string()),
+                 dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(h5::File::Open(table.string()).ReadIntAttribute("warnings_count"), 2);
+  const CommandResult info =
+      RunCommand(Quoted(WrcBinary()) + " info --json " + Quoted(table.string()), dir.path());
+  EXPECT_NE(info.out.find("\"warnings_count\": 2"), std::string::npos) << info.out;
 }
 
 TEST(CliTableCommands, FullStandardOutputIsAnError) {

@@ -68,6 +68,7 @@ json InfoJson(const std::string& path, const TableInfo& info) {
       {"file", path},
       {"format", info.format},
       {"format_version", info.format_version},
+      {"warnings_count", info.warnings_count >= 0 ? json(info.warnings_count) : json(nullptr)},
       {"points", info.points},
       {"axes", axes},
       {"outputs", outputs},
@@ -164,6 +165,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
     std::cout << ' ' << kStatusNames[s] << ' ' << info.status_counts[s];
   }
   if (info.other_status > 0) std::cout << " invalid " << info.other_status;
+  if (info.warnings_count >= 0) std::cout << "; with warnings " << info.warnings_count;
   std::cout << "\nsolve time: total " << info.solve_time_total_s << " s, mean "
             << (info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0)
             << " s, max " << info.solve_time_max_s << " s\n";
