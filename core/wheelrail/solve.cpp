@@ -217,6 +217,29 @@ void AddTruncationWarnings(const Problem& pb, double z, WheelRailResult& result)
   }
 }
 
+// A patch resolved by fewer than 16 elements in contact (4 across each way: the pressure's peak
+// and edges then get about one element each, and the force error is of the order of 10 %) is
+// too coarse to trust; a peak pressure above 1e5 N/mm² (100 GPa, some 50 times the strength of
+// rail steel) means a placement far outside what the profiles allow.
+void AddResolutionWarnings(WheelRailResult& result) {
+  constexpr int kMinContactElements = 16;
+  constexpr double kMaxPlausiblePressure = 1e5;
+  for (std::size_t n = 0; n < result.patches.size(); ++n) {
+    const PatchResult& p = result.patches[n];
+    const std::string patch = "patch " + std::to_string(n + 1);
+    if (p.n_contact > 0 && p.n_contact < kMinContactElements) {
+      result.warnings.push_back(patch + " has only " + std::to_string(p.n_contact) +
+                                " elements in contact (fewer than 16): grid.dx/grid.ds are too "
+                                "coarse for it");
+    }
+    if (p.pmax > kMaxPlausiblePressure) {
+      result.warnings.push_back(patch + ": peak pressure " + FormatNumber(p.pmax) +
+                                " N/mm² is implausible (more than 1e5): check state.z and the "
+                                "profiles' placement");
+    }
+  }
+}
+
 // Every repair made to the profiles while reading them: the result rests on the repaired
 // geometry, so it says so.
 void AddProfileWarnings(const Problem& pb, WheelRailResult& result) {
@@ -613,6 +636,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   if (!result.patches.empty()) {
     AddTruncationWarnings(pb, result.z, result);
     AddHalfSpaceWarnings(pb, result.z, result);
+    AddResolutionWarnings(result);
   }
   LocateResultant(pb, result);
   result.fz_iterations = iterations;

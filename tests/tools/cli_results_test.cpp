@@ -134,6 +134,15 @@ TEST_F(CliResults, APotentialAreaOffsetFromTheContactIsAWarning) {
   EXPECT_NE(warnings.find("edge of the potential contact area"), std::string::npos) << warnings;
 }
 
+TEST_F(CliResults, ACoarseWheelRailPatchIsAWarning) {
+  std::string text = WheelRail("", kProfiles / "MBench_UIC60_v3.prr");
+  text = std::regex_replace(text, std::regex("dx = 1.0\nds = 1.0"), "dx = 6.0\nds = 6.0");
+  const Outcome outcome = Solve(text);
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  const std::string warnings = json::parse(outcome.out)["warnings"].dump();
+  EXPECT_NE(warnings.find("elements in contact (fewer than 16)"), std::string::npos) << warnings;
+}
+
 // A rail profile with one point moved back across its neighbour: the zig-zag is repaired, and
 // the result says so.
 TEST_F(CliResults, ProfileRepairsAreWarnings) {
