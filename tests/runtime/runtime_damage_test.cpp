@@ -132,6 +132,27 @@ TEST(RuntimeDamage, ShuffleOfTheWrongElementSizeIsAnError) {
   EXPECT_NE(std::string(wrc_last_error()).find("filter"), std::string::npos) << wrc_last_error();
 }
 
+// Tables written before: HDF5's earliest format with variable-length string attributes (what
+// the writer used then) still open and give the same numbers.
+TEST(RuntimeDamage, EarliestFormatWithVariableLengthStringsStillOpens) {
+  ScratchFile current("current");
+  wrc::test::WriteTable(current.path(), SmallTable(FileFormat::kChecksummed));
+  ScratchFile old("old");
+  wrc::test::WriteTable(old.path(), SmallTable(FileFormat::kEarliest));
+  {
+    wrc::h5::File file = wrc::h5::File::Open(old.path(), wrc::h5::File::Mode::kReadWrite);
+    const auto variable = wrc::h5::StringStorage::kVariable;
+    file.WriteStringAttribute("format", "wrc-table", variable);
+    file.OpenGroup("axes").WriteStringArrayAttribute("order", {"y", "roll"}, variable);
+    file.OpenGroup("outputs").WriteStringArrayAttribute("order", {"fy", "fx"}, variable);
+  }
+  const Evaluation expected = Evaluate(current.path());
+  ASSERT_EQ(expected.code, 0) << wrc_last_error();
+  const Evaluation result = Evaluate(old.path());
+  ASSERT_EQ(result.code, 0) << wrc_last_error();
+  EXPECT_EQ(result.values, expected.values);
+}
+
 // Every byte of a checksummed table, one at a time: an error, or exactly the intact numbers.
 TEST(RuntimeDamage, NoSingleChangedByteGivesADifferentNumber) {
   ScratchFile intact("intact");
