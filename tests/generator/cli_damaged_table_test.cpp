@@ -97,6 +97,20 @@ TEST(CliDamagedTable, UnknownFormatVersion) {
   ExpectRefused(table, "format_version' is 7");
 }
 
+// An optional object that is there but cannot be read as what it should be (a damaged object
+// header opens as neither group nor dataset) is an error, not shown as absent (zero solve time).
+TEST(CliDamagedTable, OptionalObjectOfTheWrongKind) {
+  ScratchDir dir("damaged_solve_time");
+  const fs::path table = WriteEdited(dir, "time.h5", ValidTable(), [](h5::File& file) {
+    file.Remove("solve_time_s");
+    file.CreateGroup("solve_time_s");
+  });
+  const CommandResult result =
+      RunCommand(Quoted(WrcBinary()) + " info " + Quoted(table.string()), dir.path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("solve_time_s: cannot be opened"), std::string::npos) << result.err;
+}
+
 // One byte of the float64 datatype messages changed, the size 8 read as 65544.
 TEST(CliDamagedTable, FloatOfAbsurdSize) {
   ScratchDir dir("damaged_float_size");
