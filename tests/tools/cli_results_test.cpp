@@ -134,6 +134,14 @@ TEST_F(CliResults, APotentialAreaOffsetFromTheContactIsAWarning) {
   EXPECT_NE(warnings.find("edge of the potential contact area"), std::string::npos) << warnings;
 }
 
+TEST_F(CliResults, AnAbsurdlyFineWheelRailGridIsAnErrorNotBadAlloc) {
+  std::string text = WheelRail("", kProfiles / "MBench_UIC60_v3.prr");
+  text = std::regex_replace(text, std::regex("dx = 1.0\nds = 1.0"), "dx = 0.0001\nds = 0.0001");
+  const Outcome outcome = Solve(text, "");
+  ExpectErrorNaming(outcome, "more than the limit of 200000: coarsen grid.dx/grid.ds");
+  EXPECT_EQ(outcome.err.find("bad_alloc"), std::string::npos) << outcome.err;
+}
+
 TEST_F(CliResults, ACoarseWheelRailPatchIsAWarning) {
   std::string text = WheelRail("", kProfiles / "MBench_UIC60_v3.prr");
   text = std::regex_replace(text, std::regex("dx = 1.0\nds = 1.0"), "dx = 6.0\nds = 6.0");
