@@ -13,8 +13,10 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -187,12 +189,17 @@ std::string WarmStartDescription(const SegmentLayout& layout, bool warm_start) {
   return text;
 }
 
-// Makes a finished file durable before it is renamed into place.
+// Makes a finished file durable before it is renamed into place. A failed fsync is a failed
+// write (delayed allocation reports a full disk only here), so it is an error.
 void SyncFile(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) throw InputError(path.string() + ": cannot open to sync: " + std::strerror(errno));
+  const bool synced = ::fsync(fd) == 0;
+  const int error = errno;
+  if (::close(fd) != 0 || !synced) {
+    throw InputError(path.string() +
+                     ": cannot sync to disk: " + std::strerror(synced ? errno : error));
+  }
 }
 
 void SyncDirectory(const std::filesystem::path& file) {
