@@ -1,6 +1,8 @@
 #include "wrc/halfspace.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "wrc/coupled_solver.h"
@@ -43,9 +45,10 @@ Grid HalfspaceGrid(const Case& c) {
   return Grid::Covering(x.min, x.max, y.min, y.max, gs.dx, gs.dy);
 }
 
-HalfspaceResult SolveHalfspace(const Case& c, const NormalOptions& normal_options,
+namespace {
+
+HalfspaceResult SolveUnchecked(const Case& c, const NormalOptions& normal_options,
                                const TangentialOptions& tangential_options) {
-  if (c.type != CaseType::kHalfspace) throw InputError("not a half-space case");
   HalfspaceResult r;
   r.grid = HalfspaceGrid(c);
   const Grid& g = r.grid;
@@ -115,6 +118,78 @@ HalfspaceResult SolveHalfspace(const Case& c, const NormalOptions& normal_option
   r.sx = std::move(sol.tangential.sx);
   r.sy = std::move(sol.tangential.sy);
   r.state = std::move(sol.tangential.state);
+  return r;
+}
+
+// Fewest elements across a contact patch, in x and in y, for a result worth trusting: with four
+// the pressure's peak and edges are each resolved by about one element, and the force error is
+// of the order of 10 % (CONTACT's user guide advises ten or more).
+constexpr int kMinElementsAcross = 4;
+
+// Whether any element in contact lies on the edge of the potential contact area: the contact
+// would then extend beyond it, and what lies outside is not in the result.
+bool ContactTouchesEdge(const HalfspaceResult& r) {
+  const Grid& g = r.grid;
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const bool edge = i == 0 || j == 0 || i == g.nx - 1 || j == g.ny - 1;
+      if (edge && r.pressure[g.index(i, j)] > 0.0) return true;
+    }
+  }
+  return false;
+}
+
+// Elements in contact along x and along y: the extent of the contact columns and rows.
+std::pair<int, int> ElementsAcross(const HalfspaceResult& r) {
+  const Grid& g = r.grid;
+  int i_min = g.nx, i_max = -1, j_min = g.ny, j_max = -1;
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      if (!(r.pressure[g.index(i, j)] > 0.0)) continue;
+      i_min = std::min(i_min, i);
+      i_max = std::max(i_max, i);
+      j_min = std::min(j_min, j);
+      j_max = std::max(j_max, j);
+    }
+  }
+  return {i_max - i_min + 1, j_max - j_min + 1};
+}
+
+// What the numbers cannot show by themselves: a solution that is not finite (status not
+// converged), a contact cut off by the potential contact area, a patch too coarsely resolved.
+void CheckResult(HalfspaceResult& r) {
+  const bool finite = std::isfinite(r.fn) && std::isfinite(r.fx) && std::isfinite(r.fy) &&
+                      std::isfinite(r.mz) && std::isfinite(r.pmax) && std::isfinite(r.approach);
+  if (!finite) {
+    r.status = SolverStatus::kNotConverged;
+    r.warnings.push_back(
+        "the solution is not finite (forces or approach overflowed): check the magnitudes of "
+        "state.fn, state.approach, the creepages and friction.mu");
+    return;
+  }
+  if (r.status == SolverStatus::kNoContact || r.n_contact == 0) return;
+  if (ContactTouchesEdge(r)) {
+    r.warnings.push_back(
+        "the contact reaches the edge of the potential contact area (grid.x, grid.y): it "
+        "extends beyond it and the forces are those of a cut-off patch; enlarge grid.x/grid.y "
+        "or leave them out");
+  }
+  const auto [across_x, across_y] = ElementsAcross(r);
+  if (across_x < kMinElementsAcross || across_y < kMinElementsAcross) {
+    r.warnings.push_back("only " + std::to_string(across_x) + " x " + std::to_string(across_y) +
+                         " elements across the contact patch (fewer than " +
+                         std::to_string(kMinElementsAcross) +
+                         "): grid.dx/grid.dy are too coarse for this patch");
+  }
+}
+
+}  // namespace
+
+HalfspaceResult SolveHalfspace(const Case& c, const NormalOptions& normal_options,
+                               const TangentialOptions& tangential_options) {
+  if (c.type != CaseType::kHalfspace) throw InputError("not a half-space case");
+  HalfspaceResult r = SolveUnchecked(c, normal_options, tangential_options);
+  CheckResult(r);
   return r;
 }
 

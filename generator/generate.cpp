@@ -13,8 +13,10 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -28,6 +30,7 @@
 #include "generator/table_data.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/output_file.h"
 
 namespace wrc {
 namespace {
@@ -186,12 +189,17 @@ std::string WarmStartDescription(const SegmentLayout& layout, bool warm_start) {
   return text;
 }
 
-// Makes a finished file durable before it is renamed into place.
+// Makes a finished file durable before it is renamed into place. A failed fsync is a failed
+// write (delayed allocation reports a full disk only here), so it is an error.
 void SyncFile(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) throw InputError(path.string() + ": cannot open to sync: " + std::strerror(errno));
+  const bool synced = ::fsync(fd) == 0;
+  const int error = errno;
+  if (::close(fd) != 0 || !synced) {
+    throw InputError(path.string() +
+                     ": cannot sync to disk: " + std::strerror(synced ? errno : error));
+  }
 }
 
 void SyncDirectory(const std::filesystem::path& file) {
@@ -200,6 +208,26 @@ void SyncDirectory(const std::filesystem::path& file) {
   if (fd < 0) return;
   ::fsync(fd);
   ::close(fd);
+}
+
+// Writes the table to `temporary` (created exclusively: a planted symlink is never followed),
+// syncs it and renames it to `output`, which must be a regular file or absent. On any failure
+// the temporary file is removed and `output` keeps what it held.
+void WriteTableSafely(const std::filesystem::path& temporary, const std::filesystem::path& output,
+                      const Scene& scene, const gen::TableData& data,
+                      const gen::TableProvenance& provenance) {
+  RequireRegularOutput(output);
+  CreateExclusively(temporary);
+  try {
+    gen::WriteTableFile(temporary, scene, data, provenance);
+    SyncFile(temporary);
+    RequireRegularOutput(temporary);  // still the file created above, not something swapped in
+    std::filesystem::rename(temporary, output);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw;
+  }
 }
 
 struct RunContext {
@@ -396,9 +424,7 @@ GenerateSummary RunRoot(const RunContext& run) {
     provenance.created = gen::IsoTimestampUtc();
     provenance.z_warm_start = WarmStartDescription(layout, run.options.warm_start);
     provenance.attributes = run.hooks.attributes;
-    gen::WriteTableFile(temporary, scene, data, provenance);
-    SyncFile(temporary);
-    std::filesystem::rename(temporary, run.options.output);
+    WriteTableSafely(temporary, run.options.output, scene, data, provenance);
     SyncDirectory(run.options.output);
     // Only now is the journal redundant; a crash before this line leaves a complete journal,
     // from which --resume rewrites the table without solving anything.
@@ -519,6 +545,7 @@ GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options,
 
 GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options) {
   if (options.output.empty()) throw InputError("wrc generate: no output file given");
+  RequireRegularOutput(options.output);  // before any solving, not after it
   std::unique_ptr<Cluster> cluster;
   if (options.mpi == MpiMode::kAuto) cluster = gen::JoinClusterIfLaunched();
   if (scene.refine) return gen::RefineTable(scene, options, cluster.get());

@@ -102,6 +102,12 @@ std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult&
 
 namespace {
 
+std::string JoinWarnings(const std::vector<std::string>& warnings) {
+  std::string text;
+  for (const std::string& w : warnings) text += (text.empty() ? "" : "; ") + w;
+  return text;
+}
+
 // One solve of the point from the given start (NaN: the solver's own cold start).
 PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indices, double z_guess) {
   PointResult point;
@@ -119,6 +125,8 @@ PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indice
     if (point.status == PointStatus::kNotConverged) {
       point.message =
           result.message.empty() ? "the solver reached its iteration limit" : result.message;
+    } else {
+      point.message = JoinWarnings(result.warnings);  // the doubts about a solved point
     }
   } catch (const std::exception& e) {
     point.status = PointStatus::kError;

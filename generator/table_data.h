@@ -27,6 +27,8 @@ struct TableData {
   std::vector<float> solve_time_s;
   std::vector<double> z;                          ///< Warm-start state of each finished point.
   std::map<std::uint64_t, std::string> messages;  ///< Failed points (status 2, 3).
+  /// Solved points (status 0, 1) whose solution carries warnings (PointResult::message).
+  std::uint64_t warning_points = 0;
   std::size_t finished = 0;
 };
 

@@ -20,6 +20,19 @@ std::string OptionalString(const h5::Object& object, const std::string& name) {
   return attribute.ReadString();
 }
 
+// Whether the optional child `name` is present as `kind`. Present as something else (a damaged
+// object header opens as neither group nor dataset) is an error, not an absence: info would
+// otherwise show zeros for what the file holds.
+bool HasOptional(const h5::Group& group, const std::string& name, h5::LinkKind kind) {
+  const h5::LinkKind found = group.Kind(name);
+  if (found == h5::LinkKind::kMissing) return false;
+  if (found != kind) {
+    throw InputError(group.Where() + (group.Path() == "/" ? "" : "/") + name +
+                     ": cannot be opened (damaged or not what a table holds there)");
+  }
+  return true;
+}
+
 TableInfo ReadInfo(const std::filesystem::path& path) {
   const auto lock = h5::LibraryLock();
   const h5::File file = h5::File::Open(path.string());
@@ -33,6 +46,9 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   }
   info.format_version =
       file.HasAttribute("format_version") ? file.ReadIntAttribute("format_version") : 0;
+  if (file.HasAttribute("warnings_count")) {
+    info.warnings_count = file.ReadIntAttribute("warnings_count");
+  }
   for (const std::string& name : file.AttributeNames()) {
     if (name == "format") continue;
     const h5::Attribute attribute = file.OpenAttribute(name);
@@ -46,6 +62,9 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   for (const std::string& name : axes.ReadStringArrayAttribute("order")) {
     const h5::Dataset dataset = axes.OpenDataset(name);
     info.axes.push_back({name, OptionalString(dataset, "unit"), dataset.Read<double>()});
+    if (info.axes.back().values.empty()) {
+      throw InputError(path.string() + ":/axes/" + name + ": the axis is empty");
+    }
     shape.push_back(info.axes.back().values.size());
   }
   info.points = 1;
@@ -88,26 +107,26 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
     info.outputs.push_back(output);
   }
 
-  if (file.Kind("solve_time_s") == h5::LinkKind::kDataset) {
+  if (HasOptional(file, "solve_time_s", h5::LinkKind::kDataset)) {
     for (const float t : file.OpenDataset("solve_time_s").Read<float>()) {
       info.solve_time_total_s += t;
       info.solve_time_max_s = std::max(info.solve_time_max_s, static_cast<double>(t));
     }
   }
 
-  if (file.Kind("profiles") == h5::LinkKind::kGroup) {
+  if (HasOptional(file, "profiles", h5::LinkKind::kGroup)) {
     const h5::Group profiles = file.OpenGroup("profiles");
     for (auto [name, out_name, out_bytes] :
          {std::tuple{"rail", &info.rail_profile_name, &info.rail_profile_bytes},
           std::tuple{"wheel", &info.wheel_profile_name, &info.wheel_profile_bytes}}) {
-      if (profiles.Kind(name) != h5::LinkKind::kDataset) continue;
+      if (!HasOptional(profiles, name, h5::LinkKind::kDataset)) continue;
       const h5::Dataset dataset = profiles.OpenDataset(name);
       *out_name = OptionalString(dataset, "name");
       *out_bytes = static_cast<std::size_t>(dataset.NumElements());
     }
   }
 
-  if (file.Kind("errors") == h5::LinkKind::kGroup) {
+  if (HasOptional(file, "errors", h5::LinkKind::kGroup)) {
     const h5::Group errors = file.OpenGroup("errors");
     const std::vector<std::int64_t> points = errors.OpenDataset("point").Read<std::int64_t>();
     const std::vector<std::string> messages = errors.OpenDataset("message").ReadStrings();

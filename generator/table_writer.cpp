@@ -49,6 +49,8 @@ bool TableData::Store(std::uint64_t point, const PointResult& result) {
   z[point] = result.z;
   if (result.status == PointStatus::kNotConverged || result.status == PointStatus::kError) {
     messages[point] = result.message;
+  } else if (!result.message.empty()) {
+    ++warning_points;
   }
   ++finished;
   return true;
@@ -79,6 +81,7 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
   file.WriteStringAttribute("wheel_profile_sha256", provenance.wheel_sha256);
   // Extension: how z was started at each prescribed-fz point (results differ in the last bits).
   file.WriteStringAttribute("z_warm_start", provenance.z_warm_start);
+  file.WriteIntAttribute("warnings_count", static_cast<std::int64_t>(data.warning_points));
   for (const auto& [name, value] : provenance.attributes) file.WriteStringAttribute(name, value);
 
   const h5::DatasetOptions storage = h5::CompressedChecked();

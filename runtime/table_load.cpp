@@ -38,8 +38,26 @@ std::string NodeText(std::size_t node, const std::vector<Axis>& axes,
   return text.str();
 }
 
+// Most nodes on one axis: 2^24. Generated axes have tens to thousands of nodes; a longer one
+// can only be a damaged dataspace, refused before anything is allocated for it.
+constexpr h5::Size kMaxAxisNodes = h5::Size{1} << 24;
+
 [[noreturn]] void Invalid(const std::string& where, const std::string& problem) {
   throw LoadError(WRC_ERR_FORMAT, where + ": " + problem);
+}
+
+const char* TypeName(h5::ElementType type) {
+  return type == h5::ElementType::kFloat64 ? "floating point (float64)" : "integer (int8)";
+}
+
+// The stored type must be exactly the standard one (either byte order), checked before any
+// read: HDF5 would otherwise convert through whatever a damaged datatype message says.
+void RequireType(const h5::Dataset& dataset, h5::ElementType type, const std::string& where) {
+  const h5::Datatype stored = dataset.Type();
+  if (!stored.Is(type)) {
+    Invalid(where, std::string("must be ") + TypeName(type) + ", is " + stored.Describe() +
+                       (stored.IsStandardNumeric() ? "" : " (not a standard type)"));
+  }
 }
 
 std::string OptionalStringAttribute(const h5::Object& object, const std::string& name) {
@@ -98,9 +116,11 @@ Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
   const std::vector<h5::Size> shape = dataset.Shape();
   if (shape.size() != 1) Invalid(where, "must be 1-D, has shape " + ShapeText(shape));
   if (shape[0] < 1) Invalid(where, "is empty");
-  if (dataset.Type().Class() != h5::TypeClass::kFloat) {
-    Invalid(where, "must be floating point, is " + dataset.Type().Describe());
+  if (shape[0] > kMaxAxisNodes) {
+    Invalid(where, "has " + std::to_string(shape[0]) + " nodes, more than the " +
+                       std::to_string(kMaxAxisNodes) + " a table axis may have");
   }
+  RequireType(dataset, h5::ElementType::kFloat64, where);
   Axis axis;
   axis.name = name;
   axis.unit = OptionalStringAttribute(dataset, "unit");
@@ -190,6 +210,10 @@ Table Table::Load(const std::string& path) {
   if (!std::filesystem::exists(path, ignored)) {
     throw LoadError(WRC_ERR_FILE, path + ": no such file");
   }
+  // HDF5 would block on a FIFO and read a device without end: regular files only.
+  if (!std::filesystem::is_regular_file(path, ignored)) {
+    throw LoadError(WRC_ERR_FILE, path + ": not a regular file");
+  }
   const auto lock = h5::LibraryLock();
   std::optional<h5::File> opened;
   try {
@@ -268,9 +292,7 @@ Table Table::Load(const std::string& path) {
                                 " does not match the axis lengths in /axes 'order' " +
                                 ShapeText(grid_shape));
     }
-    if (dataset.Type().Class() != h5::TypeClass::kFloat) {
-      Invalid(output_where, "must be floating point, is " + dataset.Type().Describe());
-    }
+    RequireType(dataset, h5::ElementType::kFloat64, output_where);
     const std::vector<double> values = dataset.Read<double>();
     for (std::size_t node = 0; node < table.num_nodes_; ++node) {
       table.values_[node * n_out + k] = values[node];
@@ -287,9 +309,7 @@ Table Table::Load(const std::string& path) {
     Invalid(where + "/status", "shape " + ShapeText(status.Shape()) +
                                    " does not match the axis lengths " + ShapeText(grid_shape));
   }
-  if (status.Type().Class() != h5::TypeClass::kInteger) {
-    Invalid(where + "/status", "must be integer (int8), is " + status.Type().Describe());
-  }
+  RequireType(status, h5::ElementType::kInt8, where + "/status");
   table.status_ = status.Read<std::int8_t>();
 
   // A node that solved fine must carry finite numbers; failed nodes may hold NaN, which Eval

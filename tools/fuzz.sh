@@ -12,7 +12,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-read -r -a targets <<<"${WRC_FUZZ_TARGETS:-fuzz_profile fuzz_case fuzz_scene}"
+read -r -a targets <<<"${WRC_FUZZ_TARGETS:-fuzz_profile fuzz_case fuzz_scene fuzz_table}"
 jobs="${WRC_JOBS:-2}"
 
 cmake -S . -B build-fuzz -DWRC_FUZZ=ON -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
@@ -26,7 +26,9 @@ fi
 
 seconds="${1:-60}"
 shift || true
-declare -A dictionary=([fuzz_profile]=profile.dict [fuzz_case]=toml.dict [fuzz_scene]=toml.dict)
+declare -A dictionary=([fuzz_profile]=profile.dict [fuzz_case]=toml.dict [fuzz_scene]=toml.dict
+  [fuzz_table]=hdf5.dict)
+declare -A max_len=([fuzz_profile]=4096 [fuzz_case]=4096 [fuzz_scene]=4096 [fuzz_table]=32768)
 failed=()
 for target in "${targets[@]}"; do
   corpus="build-fuzz/corpus/$target"
@@ -35,7 +37,7 @@ for target in "${targets[@]}"; do
   echo "fuzz: $target for ${seconds} s" >&2
   # The first directory receives new inputs; the seeds in tests/fuzz/corpus stay untouched.
   if ! "build-fuzz/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -dict="tests/fuzz/${dictionary[$target]}" -artifact_prefix="$artifacts/" \
+    -max_len="${max_len[$target]}" -dict="tests/fuzz/${dictionary[$target]}" -artifact_prefix="$artifacts/" \
     -print_final_stats=1 "$@" "$corpus" "tests/fuzz/corpus/$target"; then
     failed+=("$target")
   fi

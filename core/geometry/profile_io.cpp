@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/geometry/profile_internal.h"
+#include "core/io/case_parser.h"
 #include "wrc/errors.h"
 #include "wrc/profile.h"
 
@@ -106,8 +108,7 @@ std::vector<std::string> ReadLines(const std::string& path) {
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(path + ": cannot open profile file: it is a directory");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open profile file: permission denied or unreadable");
+  std::istringstream in(io::ReadTextFile(path));  // regular files only, bounded size
   std::vector<std::string> lines;
   std::string line;
   bool any_text = false;
@@ -116,7 +117,6 @@ std::vector<std::string> ReadLines(const std::string& path) {
     if (!Trim(line).empty()) any_text = true;
     lines.push_back(line);
   }
-  if (in.bad()) throw InputError(path + ": error while reading the profile file");
   if (!any_text) throw InputError(At(path, 1, "the profile file is empty"));
   return lines;
 }

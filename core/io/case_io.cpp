@@ -1,8 +1,14 @@
 // Case files (SPEC §2): TOML to wrc::Case, with every name, type and value checked so that a
 // typo or an impossible value is reported with file, line and key instead of being ignored.
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -10,6 +16,7 @@
 #include "core/io/case_parser.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
+#include "wrc/grid.h"
 #include "wrc/profile.h"
 
 namespace wrc {
@@ -191,6 +198,52 @@ void RequirePositive(const Section& section, std::string_view key, double value)
 void RequireNonNegative(const Section& section, std::string_view key, double value) {
   if (value < 0.0) section.Fail(key, "must not be negative");
 }
+// |value| <= limit; `why` says where the limit comes from, in the user's terms.
+void RequireMagnitudeAtMost(const Section& section, std::string_view key, double value,
+                            double limit, const std::string& why) {
+  if (!(std::fabs(value) <= limit)) {
+    section.Fail(key, "must be within ±" + FormatNumber(limit) + " (" + why + ")");
+  }
+}
+
+// Plausible ranges of the inputs. Each is far outside any real wheel–rail or test contact, so
+// only a mistake (a unit slip, a typo in an exponent) reaches it, and the message then names
+// the key rather than letting the solver fail somewhere else or return absurd numbers.
+// Element sizes: 0.1 µm to 100 mm. Finer cannot be meant for contact mechanics; coarser than
+// 100 mm is wider than any contact patch (a wheel–rail patch is at most ~40 mm long).
+constexpr double kMinElementSize = 1e-4;
+constexpr double kMaxElementSize = 100.0;
+// Rolling speed: 1e6 mm/s = 1 km/s, six times the rail speed record.
+constexpr double kMaxVelocity = 1e6;
+// Creepages and spin (relative slip): 1, i.e. 100 % of the rolling speed.
+constexpr double kMaxCreepage = 1.0;
+// Spin creepage of the half-space case, 1/mm: 1, a full turn of slip direction per ~6 mm.
+constexpr double kMaxSpinCreepage = 1.0;
+// Friction coefficient: 0 (frictionless) or 1e-6 to 10. Dry steel is about 0.6; a positive
+// value below 1e-6 makes traction bounds that vanish against round-off.
+constexpr double kMinFriction = 1e-6;
+constexpr double kMaxFriction = 10.0;
+// Prescribed forces: at least 1e-6 N; below that the patch is far smaller than any element.
+constexpr double kMinForce = 1e-6;
+
+void RequireElementSize(const Section& section, std::string_view key, double value) {
+  RequirePositive(section, key, value);
+  if (value < kMinElementSize || value > kMaxElementSize) {
+    section.Fail(key, "must be between " + FormatNumber(kMinElementSize) + " and " +
+                          FormatNumber(kMaxElementSize) + " mm (the size of one element)");
+  }
+}
+void RequireFriction(const Section& section, std::string_view key, double mu) {
+  RequireNonNegative(section, key, mu);
+  if (mu != 0.0 && (mu < kMinFriction || mu > kMaxFriction)) {
+    section.Fail(key, "must be 0 or between " + FormatNumber(kMinFriction) + " and " +
+                          FormatNumber(kMaxFriction));
+  }
+}
+void RequireForce(const Section& section, std::string_view key, double force) {
+  RequirePositive(section, key, force);
+  if (force < kMinForce) section.Fail(key, "must be at least " + FormatNumber(kMinForce) + " N");
+}
 
 /// Reads the profile file as the wheel-rail solver does (wrc::ReadProfile with the section's
 /// mirror_y and default options, then the arc-length spline), so that a broken profile is
@@ -319,7 +372,7 @@ Friction ReadFriction(const Section& section) {
                    "constant friction give one number");
     }
     const double mu = ReadNumber(section.file(), *mu_node, section.Path("mu"));
-    RequireNonNegative(section, "mu", mu);
+    RequireFriction(section, "mu", mu);
     return Friction::Constant(mu);
   }
   if (!mu_node->is_array()) {
@@ -342,6 +395,11 @@ Friction ReadFriction(const Section& section) {
   friction.mu.clear();
   for (std::size_t i = 0; i < mu.size(); ++i) {
     if (mu[i].value < 0.0) section.file().Fail(mu[i].node, mu[i].path, "must not be negative");
+    if (mu[i].value != 0.0 && (mu[i].value < kMinFriction || mu[i].value > kMaxFriction)) {
+      section.file().Fail(mu[i].node, mu[i].path,
+                          "must be 0 or between " + FormatNumber(kMinFriction) + " and " +
+                              FormatNumber(kMaxFriction));
+    }
     friction.alpha_deg.push_back(alpha[i].value);
     friction.mu.push_back(mu[i].value);
   }
@@ -355,19 +413,35 @@ Interval ReadInterval(const Section& section, std::string_view key) {
   return Interval{bounds[0].value, bounds[1].value};
 }
 
+// The elements an explicit range holds, counted in floating point (no integer to wrap), at
+// most Grid::kMaxElementsAlong.
+void RequireElementCount(const Section& section, std::string_view key,
+                         const std::optional<Interval>& range, double step,
+                         std::string_view step_key) {
+  if (!range) return;
+  const double count = std::round((range->max - range->min) / step);
+  if (!(count <= Grid::kMaxElementsAlong)) {
+    section.Fail(key, "holds " + FormatNumber(count) + " elements of grid." +
+                          std::string(step_key) + " = " + FormatNumber(step) + " mm, more than " +
+                          std::to_string(Grid::kMaxElementsAlong));
+  }
+}
+
 GridSettings ReadGrid(const Section& section, CaseType type) {
   GridSettings grid;
   const std::string why = "the grid must be given for " + TypeName(type) + " problems";
   grid.dx = section.RequiredNumber("dx", why);
-  RequirePositive(section, "dx", grid.dx);
+  RequireElementSize(section, "dx", grid.dx);
   if (type == CaseType::kWheelRail) {
     grid.ds = section.RequiredNumber("ds", why);
-    RequirePositive(section, "ds", grid.ds);
+    RequireElementSize(section, "ds", grid.ds);
   } else {
     grid.dy = section.RequiredNumber("dy", why);
-    RequirePositive(section, "dy", grid.dy);
+    RequireElementSize(section, "dy", grid.dy);
     if (section.Has("x")) grid.x = ReadInterval(section, "x");
     if (section.Has("y")) grid.y = ReadInterval(section, "y");
+    RequireElementCount(section, "x", grid.x, grid.dx, "dx");
+    RequireElementCount(section, "y", grid.y, grid.dy, "dy");
   }
   return grid;
 }
@@ -423,10 +497,11 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
                           "missing: give the vertical position state.z (mm) or the vertical "
                           "force state.fz (N)");
   }
-  if (state.fz) RequirePositive(section, "fz", *state.fz);
+  if (state.fz) RequireForce(section, "fz", *state.fz);
   state.roll = section.Number("roll", state.roll);
   state.yaw = section.Number("yaw", state.yaw);
   state.velocity = section.Number("velocity", state.velocity);
+  RequireMagnitudeAtMost(section, "velocity", state.velocity, kMaxVelocity, "mm/s, i.e. 1 km/s");
   state.vy = section.Number("vy", state.vy);
   state.vroll = section.Number("vroll", state.vroll);
   state.vyaw = section.Number("vyaw", state.vyaw);
@@ -436,6 +511,8 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   if (omega && state.spin) section.Fail("spin", "give either state.omega or state.spin, not both");
   if (omega) state.omega = *omega;
   if (state.spin) {
+    RequireMagnitudeAtMost(section, "spin", *state.spin, kMaxCreepage,
+                           "a relative creepage; 1 is 100 % slip");
     state.omega = OmegaFromSpin(*state.spin, state.velocity, wheelset.nominal_radius);
     // Finite inputs of absurd size (velocity 1e300 on a 1e-300 mm wheel) overflow.
     if (!std::isfinite(state.omega)) {
@@ -459,10 +536,15 @@ HalfspaceState ReadHalfspaceState(const Section& section) {
                           "missing: give the normal force state.fn (N) or the approach "
                           "state.approach (mm)");
   }
-  if (state.fn) RequirePositive(section, "fn", *state.fn);
+  if (state.fn) RequireForce(section, "fn", *state.fn);
   state.cksi = section.Number("cksi", state.cksi);
+  RequireMagnitudeAtMost(section, "cksi", state.cksi, kMaxCreepage,
+                         "a relative creepage; 1 is 100 % slip");
   state.ceta = section.Number("ceta", state.ceta);
+  RequireMagnitudeAtMost(section, "ceta", state.ceta, kMaxCreepage,
+                         "a relative creepage; 1 is 100 % slip");
   state.cphi = section.Number("cphi", state.cphi);
+  RequireMagnitudeAtMost(section, "cphi", state.cphi, kMaxSpinCreepage, "1/mm");
   return state;
 }
 
@@ -504,17 +586,50 @@ Case ReadCase(const toml::table& root, const SourceFile& file,
   return result;
 }
 
-std::string ReadTextFile(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path.string() + ": is a directory, not a file");
+namespace {
+
+// Closes a descriptor when the read is done, however it ends.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
   }
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError(path.string() + ": cannot open file");
-  std::ostringstream contents;
-  contents << stream.rdbuf();
-  if (stream.bad()) throw InputError(path.string() + ": cannot read file");
-  return contents.str();
+};
+
+std::string SystemError(const std::filesystem::path& path, const std::string& what) {
+  return path.string() + ": " + what + ": " + std::strerror(errno);
+}
+
+}  // namespace
+
+std::string ReadTextFile(const std::filesystem::path& path, std::size_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
+  const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+  if (file.fd < 0) throw InputError(SystemError(path, "cannot open file"));
+  struct stat info {};
+  if (::fstat(file.fd, &info) != 0) throw InputError(SystemError(path, "cannot inspect file"));
+  if (S_ISDIR(info.st_mode)) throw InputError(path.string() + ": is a directory, not a file");
+  if (!S_ISREG(info.st_mode)) {
+    throw InputError(path.string() + ": is not a regular file (a device, FIFO or socket)");
+  }
+  const auto too_large = [&] {
+    return InputError(path.string() + ": larger than " + std::to_string(max_bytes >> 20) +
+                      " MiB, too large for an input file");
+  };
+  if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) throw too_large();
+  std::string contents;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(SystemError(path, "cannot read file"));
+    }
+    contents.append(buffer, static_cast<std::size_t>(n));
+    if (contents.size() > max_bytes) throw too_large();  // grew while being read
+  }
+  return contents;
 }
 
 }  // namespace io

@@ -36,7 +36,13 @@ Case ReadCase(const toml::table& root, const SourceFile& file,
 /// The problem type of a parsed document (`problem.type`, default wheel-rail).
 CaseType ReadCaseType(const toml::table& root, const SourceFile& file);
 
-/// Reads a file into a string; throws InputError naming the file when it cannot be read.
-std::string ReadTextFile(const std::filesystem::path& path);
+/// Largest text input (case, scene, profile) read: 64 MiB, a thousand times the largest real
+/// one; the limit makes `/dev/zero` or a runaway file an error instead of unbounded memory.
+constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
+
+/// Reads a regular file of at most max_bytes into a string; throws InputError naming the file
+/// when it is not a regular file (a FIFO is refused without blocking), too large or unreadable.
+std::string ReadTextFile(const std::filesystem::path& path,
+                         std::size_t max_bytes = kMaxTextFileBytes);
 
 }  // namespace wrc::io

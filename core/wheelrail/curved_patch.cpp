@@ -67,8 +67,9 @@ PatchResult SolveCurvedPatch(const PatchContext& ctx, const PatchExtent& extent)
 
   // Lateral extent along the rail, relative to the reference.
   const auto& samples = ctx.search->samples;
-  const Grid grid = PatchGrid(c.grid.dx, c.grid.ds, extent.x_min - ref.x, extent.x_max - ref.x,
-                              samples[extent.first].s - ref.s, samples[extent.last].s - ref.s);
+  const Grid grid =
+      CheckedPatchGrid(ctx, extent.x_min - ref.x, extent.x_max - ref.x,
+                       samples[extent.first].s - ref.s, samples[extent.last].s - ref.s);
 
   // The curved reference (§3.3, Eq. 18): mean of rail and wheel at equal arc-length steps.
   const double theta = RailShare(c);

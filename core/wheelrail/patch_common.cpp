@@ -63,6 +63,21 @@ PatchReference FindReference(const PatchContext& ctx, const PatchExtent& extent)
   return ref;
 }
 
+Grid CheckedPatchGrid(const PatchContext& ctx, double x_min, double x_max, double s_min,
+                      double s_max) {
+  const double dx = ctx.c->grid.dx, ds = ctx.c->grid.ds;
+  // Counted in floating point, as PatchGrid lays them out, before any integer or allocation.
+  const double nx = std::ceil(x_max / dx) - std::floor(x_min / dx) + 3.0;
+  const double ny = std::ceil(s_max / ds) - std::floor(s_min / ds) + 3.0;
+  if (!(nx * ny <= static_cast<double>(ctx.options->max_patch_elements))) {
+    throw InputError(ctx.c->source_name + ": a contact patch needs " + FormatNumber(nx) + " x " +
+                     FormatNumber(ny) + " elements, more than the limit of " +
+                     std::to_string(ctx.options->max_patch_elements) +
+                     ": coarsen grid.dx/grid.ds or check the pose");
+  }
+  return PatchGrid(dx, ds, x_min, x_max, s_min, s_max);
+}
+
 Grid PatchGrid(double dx, double ds, double x_min, double x_max, double s_min, double s_max) {
   const int i0 = static_cast<int>(std::floor(x_min / dx)) - 1;
   const int i1 = static_cast<int>(std::ceil(x_max / dx)) + 1;

@@ -22,6 +22,10 @@ PatchReference FindReference(const PatchContext& ctx, const PatchExtent& extent)
 /// Grid of elements dx × ds with centres at multiples of dx, ds from the reference, covering
 /// [x_min, x_max] × [s_min, s_max] (relative to the reference) plus one element on each side.
 Grid PatchGrid(double dx, double ds, double x_min, double x_max, double s_min, double s_max);
+/// PatchGrid with the case's grid.dx/grid.ds, refused (InputError naming the grid keys) before
+/// anything is allocated when it would exceed WheelRailOptions::max_patch_elements.
+Grid CheckedPatchGrid(const PatchContext& ctx, double x_min, double x_max, double s_min,
+                      double s_max);
 
 /// Solves the normal problem (approach 0: h holds the interpenetration) and, when the case
 /// asks for it, the steady-rolling tangential problem; fills the fields and counts of result.

@@ -27,8 +27,7 @@ PatchResult SolvePlanarPatch(const PatchContext& ctx, const PatchExtent& extent)
     s_min = std::min(s_min, s_loc);
     s_max = std::max(s_max, s_loc);
   }
-  const Grid grid =
-      PatchGrid(c.grid.dx, c.grid.ds, extent.x_min - ref.x, extent.x_max - ref.x, s_min, s_max);
+  const Grid grid = CheckedPatchGrid(ctx, extent.x_min - ref.x, extent.x_max - ref.x, s_min, s_max);
 
   // Undeformed distance along n at every element (Fig. 4d): h = t_rail − t_wheel, the
   // distances along n from the plane to the rail and to the wheel surface.

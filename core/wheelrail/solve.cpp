@@ -44,13 +44,15 @@ void Validate(const Case& c) {
     throw InputError(c.source_name + ": state.velocity = " + FormatNumber(st.velocity) +
                      ": steady rolling needs a positive forward velocity");
   }
-  // Beyond 0.2 rad the wheelset is no longer on the track: the contact search along the rail
-  // profile and the planar/curved references assume a wheel standing on the rail.
+  // Beyond 0.1 rad the wheelset is no longer on the track (a roll of 0.1 rad lifts a wheel by
+  // some 75 mm, twice a flange's height; yaw in the tightest curves stays under 0.03 rad): the
+  // contact search along the rail profile and the planar/curved references assume a wheel
+  // standing on the rail, and fail there with messages about other inputs.
   for (const auto& [key, value] : {std::pair<const char*, double>{"state.roll", st.roll},
                                    std::pair<const char*, double>{"state.yaw", st.yaw}}) {
-    if (std::fabs(value) > 0.2) {
+    if (std::fabs(value) > 0.1) {
       throw InputError(c.source_name + ": " + key + " = " + FormatNumber(value) +
-                       ": more than 0.2 rad is outside the range of wheelset-on-track contact");
+                       ": more than 0.1 rad is outside the range of wheelset-on-track contact");
     }
   }
 }
@@ -213,6 +215,54 @@ void AddTruncationWarnings(const Problem& pb, double z, WheelRailResult& result)
         " mm (track frame): contact beyond it, on surface the profiles do "
         "not describe, is not in the result");
   }
+}
+
+// A patch resolved by fewer than 16 elements in contact (4 across each way: the pressure's peak
+// and edges then get about one element each, and the force error is of the order of 10 %) is
+// too coarse to trust; a peak pressure above 1e5 N/mm² (100 GPa, some 50 times the strength of
+// rail steel) means a placement far outside what the profiles allow.
+void AddResolutionWarnings(WheelRailResult& result) {
+  constexpr int kMinContactElements = 16;
+  constexpr double kMaxPlausiblePressure = 1e5;
+  for (std::size_t n = 0; n < result.patches.size(); ++n) {
+    const PatchResult& p = result.patches[n];
+    const std::string patch = "patch " + std::to_string(n + 1);
+    if (p.n_contact > 0 && p.n_contact < kMinContactElements) {
+      result.warnings.push_back(patch + " has only " + std::to_string(p.n_contact) +
+                                " elements in contact (fewer than 16): grid.dx/grid.ds are too "
+                                "coarse for it");
+    }
+    if (p.pmax > kMaxPlausiblePressure) {
+      result.warnings.push_back(patch + ": peak pressure " + FormatNumber(p.pmax) +
+                                " N/mm² is implausible (more than 1e5): check state.z and the "
+                                "profiles' placement");
+    }
+  }
+}
+
+// Every repair made to the profiles while reading them: the result rests on the repaired
+// geometry, so it says so.
+void AddProfileWarnings(const Problem& pb, WheelRailResult& result) {
+  for (const ProfileSpline* spline : {&pb.rail->spline(), pb.wheel_spline.get()}) {
+    for (const std::string& w : spline->warnings()) result.warnings.push_back("profile: " + w);
+  }
+}
+
+// A solution with a non-finite force or position is no solution: status not converged, with
+// the reason, instead of numbers that are not numbers.
+void RequireFiniteResult(WheelRailResult& result) {
+  bool finite = std::isfinite(result.z);
+  for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(result.force_T(i));
+  for (const PatchResult& p : result.patches) {
+    finite = finite && std::isfinite(p.fn) && std::isfinite(p.fx) && std::isfinite(p.fs) &&
+             std::isfinite(p.pmax);
+  }
+  if (finite) return;
+  result.status = SolverStatus::kNotConverged;
+  result.message =
+      "the solution is not finite (forces or position overflowed): check the "
+      "magnitudes of the state and creepage inputs";
+  result.warnings.push_back(result.message);
 }
 
 // Solves the patches at wheelset height z (right-side equivalent); with tangential = false
@@ -581,9 +631,12 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     }
   }
   result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
+  AddProfileWarnings(pb, result);
+  RequireFiniteResult(result);
   if (!result.patches.empty()) {
     AddTruncationWarnings(pb, result.z, result);
     AddHalfSpaceWarnings(pb, result.z, result);
+    AddResolutionWarnings(result);
   }
   LocateResultant(pb, result);
   result.fz_iterations = iterations;

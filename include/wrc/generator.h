@@ -55,7 +55,8 @@ struct PointResult {
   double z = std::numeric_limits<double>::quiet_NaN();
   /// One value per scene output, in scene.outputs order.
   std::vector<double> values;
-  /// Why the point failed (status kNotConverged or kError); empty otherwise.
+  /// Why the point failed (status kNotConverged or kError); for a solved point its warnings
+  /// (WheelRailResult::warnings, joined by "; "), empty when it has none.
   std::string message;
 };
 
@@ -190,6 +191,8 @@ struct TableInfo {
   };
   std::string format;
   std::int64_t format_version = 0;
+  /// Solved points with warnings (root attribute warnings_count); -1 when the table predates it.
+  std::int64_t warnings_count = -1;
   /// Root string attributes (wrc_version, created, scene, profile hashes, ...), by name.
   std::vector<std::pair<std::string, std::string>> attributes;
   std::vector<Axis> axes;

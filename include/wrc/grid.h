@@ -11,6 +11,13 @@ namespace wrc {
 /// (x0 + i·dx, y0 + j·dy). Arrays on the grid are stored with i fastest: index = i + nx·j
 /// (the paper's I = i + mx·(j − 1), §2.7).
 struct Grid {
+  /// Most elements along one direction: 2^16. The FFT influence operator works on twice that
+  /// (2^17 points per direction); finer grids are input mistakes, not contact problems.
+  static constexpr int kMaxElementsAlong = 1 << 16;
+  /// Most elements in all: 2^22 (4 M). The solvers keep about 30 doubles per element and the
+  /// FFT four times the grid, so this is already several GiB; more ends in std::bad_alloc.
+  static constexpr double kMaxElements = 4194304.0;
+
   int nx = 0;
   int ny = 0;
   double dx = 0.0;

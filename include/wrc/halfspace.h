@@ -26,6 +26,9 @@ struct HalfspaceResult {
   bool tangential_solved = false;
   std::vector<double> pressure, px, py, sx, sy, h;
   std::vector<ElementState> state;
+  /// Doubts about the result (contact cut off by the potential area, too few elements across
+  /// the patch), one sentence each; a non-finite solution also sets status not converged.
+  std::vector<std::string> warnings;
 };
 
 /// The potential contact grid of a half-space case: [grid].x/y when given, otherwise a box

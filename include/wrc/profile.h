@@ -254,6 +254,9 @@ class ProfileSpline {
   /// order, and a part whose knot refinement does not settle ("<file>:<line>: no arc-length
   /// spline through the points of lines A to B ...": points that turn back sharply).
   explicit ProfileSpline(const Profile& profile);
+  /// What was repaired or ignored while reading the profile (Profile::warnings), kept so that
+  /// results can report it.
+  const std::vector<std::string>& warnings() const;
   ~ProfileSpline();
   ProfileSpline(const ProfileSpline& other);
   ProfileSpline& operator=(const ProfileSpline& other);

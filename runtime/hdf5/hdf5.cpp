@@ -101,6 +101,29 @@ hid_t FileType(ElementType type) {
   return H5T_IEEE_F64LE;
 }
 
+// The standard file types of an element type, in both byte orders.
+std::pair<hid_t, hid_t> StandardTypes(ElementType type) {
+  switch (type) {
+    case ElementType::kFloat64:
+      return {H5T_IEEE_F64LE, H5T_IEEE_F64BE};
+    case ElementType::kFloat32:
+      return {H5T_IEEE_F32LE, H5T_IEEE_F32BE};
+    case ElementType::kInt8:
+      return {H5T_STD_I8LE, H5T_STD_I8BE};
+    case ElementType::kUInt8:
+      return {H5T_STD_U8LE, H5T_STD_U8BE};
+    case ElementType::kInt32:
+      return {H5T_STD_I32LE, H5T_STD_I32BE};
+    case ElementType::kInt64:
+      return {H5T_STD_I64LE, H5T_STD_I64BE};
+  }
+  return {H5T_IEEE_F64LE, H5T_IEEE_F64BE};
+}
+
+constexpr ElementType kAllElementTypes[] = {ElementType::kFloat64, ElementType::kFloat32,
+                                            ElementType::kInt8,    ElementType::kUInt8,
+                                            ElementType::kInt32,   ElementType::kInt64};
+
 std::size_t ElementBytes(ElementType type) {
   switch (type) {
     case ElementType::kFloat64:
@@ -131,6 +154,9 @@ Handle StrictTransferList(const std::string& where) {
               Handle::Kind::kPropertyList);
   Check(H5Pset_type_conv_cb(dxpl.id(), AbortOnLossyConversion, nullptr), where,
         "cannot set the conversion callback");
+  // Fletcher-32 is verified on read by default; said explicitly, as the data's integrity rests
+  // on it.
+  Check(H5Pset_edc_check(dxpl.id(), H5Z_ENABLE_EDC), where, "cannot enable checksum checks");
   return dxpl;
 }
 
@@ -189,6 +215,11 @@ std::vector<H5Z_filter_t> Filters(hid_t dataset, const std::string& where) {
 
 Error::Error(const std::string& object, const std::string& problem)
     : std::runtime_error(object + ": " + problem), object_(object) {}
+
+void SkipLibraryTermination() {
+  // Fails only when the library is already initialised; then there is nothing left to change.
+  if (H5dont_atexit() < 0) H5Eclear2(H5E_DEFAULT);
+}
 
 std::unique_lock<std::recursive_mutex> LibraryLock() {
   static std::recursive_mutex mutex;
@@ -314,6 +345,40 @@ std::string Datatype::Describe() const {
   return "a non-numeric, non-string type";
 }
 
+bool Datatype::Is(ElementType type) const {
+  const auto [little, big] = StandardTypes(type);
+  return Check(H5Tequal(id(), little), where_, "cannot compare types") > 0 ||
+         Check(H5Tequal(id(), big), where_, "cannot compare types") > 0;
+}
+
+bool Datatype::IsStandardNumeric() const {
+  return std::any_of(std::begin(kAllElementTypes), std::end(kAllElementTypes),
+                     [this](ElementType type) { return Is(type); });
+}
+
+namespace {
+
+// Refuses a stored numeric type the wrapper does not know (see Datatype::IsStandardNumeric).
+void RequireStandardNumeric(const Datatype& stored, const std::string& where) {
+  if (stored.Class() != TypeClass::kInteger && stored.Class() != TypeClass::kFloat) {
+    throw Error(where, "expected numbers, found " + stored.Describe());
+  }
+  if (!stored.IsStandardNumeric()) {
+    throw Error(where, "stored type (" + stored.Describe() +
+                           ") is not a standard IEEE float or integer: damaged or foreign file");
+  }
+}
+
+// Refuses a read of count elements of bytes each above kMaxReadBytes.
+void RequireReadable(Size count, std::size_t bytes, const std::string& where) {
+  if (bytes == 0 || count > kMaxReadBytes / bytes) {
+    throw Error(where, std::to_string(count) + " elements of " + std::to_string(bytes) +
+                           " bytes are more than a table holds: damaged dataspace or datatype");
+  }
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------
 // Attribute
 
@@ -357,6 +422,7 @@ std::vector<std::string> Attribute::ReadStrings() const {
     return values;
   }
   const std::size_t width = stored.ElementSize();
+  RequireReadable(count, width, where_);
   const H5T_str_t padding = H5Tget_strpad(stored.id());
   if (padding == H5T_STR_ERROR) Fail(where_, "cannot get the string padding");
   const Handle memory_type(Check(H5Tcopy(stored.id()), where_, "cannot copy the string type"),
@@ -386,6 +452,7 @@ std::int64_t Attribute::ReadInt() const {
   if (stored.Class() != TypeClass::kInteger) {
     throw Error(where_, "expected an integer, found " + stored.Describe());
   }
+  RequireStandardNumeric(stored, where_);
   if (Space().NumElements() != 1) throw Error(where_, "expected a single integer");
   std::int64_t value = 0;
   Check(H5Aread(handle_.id(), H5T_NATIVE_INT64, &value), where_, "cannot read the integer");
@@ -397,6 +464,7 @@ double Attribute::ReadDouble() const {
   if (stored.Class() != TypeClass::kInteger && stored.Class() != TypeClass::kFloat) {
     throw Error(where_, "expected a number, found " + stored.Describe());
   }
+  RequireStandardNumeric(stored, where_);
   if (Space().NumElements() != 1) throw Error(where_, "expected a single number");
   double value = 0.0;
   Check(H5Aread(handle_.id(), H5T_NATIVE_DOUBLE, &value), where_, "cannot read the number");
@@ -554,13 +622,44 @@ bool Dataset::HasFletcher32() const {
   return std::find(filters.begin(), filters.end(), H5Z_FILTER_FLETCHER32) != filters.end();
 }
 
+std::size_t Dataset::CheckedCount(std::size_t element_bytes) const {
+  const Size count = NumElements();
+  RequireReadable(count, element_bytes, Where());
+  return static_cast<std::size_t>(count);
+}
+
+void Dataset::CheckFilters() const {
+  const std::string where = Where();
+  Handle dcpl(Check(H5Dget_create_plist(id()), where, "cannot get the creation property list"),
+              Handle::Kind::kPropertyList);
+  const int count = Check(H5Pget_nfilters(dcpl.id()), where, "cannot count the filters");
+  const std::size_t element_bytes = Type().ElementSize();
+  for (int i = 0; i < count; ++i) {
+    unsigned flags = 0;
+    std::size_t n_values = 4;
+    unsigned values[4] = {0, 0, 0, 0};
+    unsigned config = 0;
+    const H5Z_filter_t filter = Check(H5Pget_filter2(dcpl.id(), static_cast<unsigned>(i), &flags,
+                                                     &n_values, values, 0, nullptr, &config),
+                                      where, "cannot query a filter");
+    const bool fits =
+        (filter == H5Z_FILTER_SHUFFLE && n_values == 1 && values[0] == element_bytes) ||
+        (filter == H5Z_FILTER_DEFLATE && n_values == 1 && values[0] <= 9) ||
+        (filter == H5Z_FILTER_FLETCHER32 && n_values == 0);
+    if (!fits) {
+      throw Error(where, "filter " + std::to_string(i) + " (id " + std::to_string(filter) + ", " +
+                             std::to_string(n_values) +
+                             " parameters) is not shuffle, deflate or fletcher32 with parameters "
+                             "that fit the stored type: damaged or foreign file");
+    }
+  }
+}
+
 void Dataset::ReadRaw(ElementType type, void* values, std::size_t count) const {
   EnsureSilenced();
   const std::string where = Where();
-  const Datatype stored = Type();
-  if (stored.Class() != TypeClass::kInteger && stored.Class() != TypeClass::kFloat) {
-    throw Error(where, "expected numbers, found " + stored.Describe());
-  }
+  RequireStandardNumeric(Type(), where);
+  CheckFilters();
   if (count != NumElements()) throw Error(where, "element count does not match the buffer");
   const Handle dxpl = StrictTransferList(where);
   Check(H5Dread(id(), NativeType(type), H5S_ALL, H5S_ALL, dxpl.id(), values), where,
@@ -596,6 +695,10 @@ void Dataset::BlockRaw(bool write, ElementType type, const std::vector<Size>& of
   Check(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, offset.data(), nullptr, count.data(),
                             nullptr),
         where, "cannot select the block");
+  if (!write) {
+    RequireStandardNumeric(Type(), where);
+    CheckFilters();
+  }
   const Dataspace memory_space = Dataspace::Simple(count);
   const Handle dxpl = StrictTransferList(where);
   if (write) {
@@ -757,16 +860,22 @@ File File::Open(const std::string& path, Mode mode) {
               path);
 }
 
-File File::Create(const std::string& path, bool overwrite) {
+File File::Create(const std::string& path, bool overwrite, FileFormat format) {
   EnsureSilenced();
   const std::string where = path + ":/";
+  Handle fapl(Check(H5Pcreate(H5P_FILE_ACCESS), where, "cannot create a property list"),
+              Handle::Kind::kPropertyList);
+  if (format == FileFormat::kChecksummed) {
+    Check(H5Pset_libver_bounds(fapl.id(), H5F_LIBVER_V110, H5F_LIBVER_V110), where,
+          "cannot select the HDF5 1.10 file format");
+  }
   Handle fcpl(Check(H5Pcreate(H5P_FILE_CREATE), where, "cannot create a property list"),
               Handle::Kind::kPropertyList);
   // The root group keeps its members in creation order too, like groups from CreateGroup.
   Check(H5Pset_link_creation_order(fcpl.id(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), where,
         "cannot track creation order");
   const unsigned flags = overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL;
-  return File(Handle(Check(H5Fcreate(path.c_str(), flags, fcpl.id(), H5P_DEFAULT), where,
+  return File(Handle(Check(H5Fcreate(path.c_str(), flags, fcpl.id(), fapl.id()), where,
                            "cannot create the file"),
                      Handle::Kind::kFile),
               path);
@@ -867,6 +976,7 @@ std::vector<std::string> Dataset::ReadStrings() const {
     return values;
   }
   const std::size_t width = stored.ElementSize();
+  RequireReadable(count, width, where);
   const Handle memory_type(Check(H5Tcopy(stored.id()), where, "cannot copy the string type"),
                            Handle::Kind::kDatatype);
   std::vector<char> buffer(count * width);

@@ -43,8 +43,17 @@ class Error : public std::runtime_error {
   std::string object_;
 };
 
+/// Tells HDF5 not to close files from its exit handler; call it before any other HDF5 use. A file
+/// whose close failed (a full disk) stays registered in HDF5 1.10, and closing it again at exit
+/// crashes (SIGSEGV in H5F__close_cb). Programs that close every file themselves call this.
+void SkipLibraryTermination();
+
 /// Serialises HDF5 use across threads (recursive: nested wrapper calls may lock again).
 std::unique_lock<std::recursive_mutex> LibraryLock();
+
+/// Largest dataset or attribute a whole read accepts, in bytes of memory (16 GiB: ten times the
+/// largest table the generator is meant for; anything larger is a damaged dataspace).
+constexpr std::size_t kMaxReadBytes = std::size_t{1} << 34;
 
 /// Element types the wrapper reads and writes; memory is in native byte order, HDF5 converts.
 enum class ElementType { kFloat64, kFloat32, kInt8, kUInt8, kInt32, kInt64 };
@@ -139,6 +148,14 @@ class Datatype {
   std::size_t ElementSize() const;
   /// Human-readable description for error messages, e.g. "float64", "int8", "string".
   std::string Describe() const;
+  /// Whether the stored type is exactly the standard type of `type` (IEEE float or two's
+  /// complement integer of that size, either byte order): sizes, precision, offsets and the
+  /// exponent and mantissa layout all match.
+  bool Is(ElementType type) const;
+  /// Whether the stored type is one of the standard numeric types of ElementType (either byte
+  /// order). Reads refuse anything else before HDF5 converts a single byte: a damaged datatype
+  /// message (a "float" of 65544 bytes) must be an error, not a conversion through it.
+  bool IsStandardNumeric() const;
 
  private:
   Handle handle_;
@@ -199,14 +216,16 @@ class Object {
     return OpenAttribute(name).ReadDouble();
   }
 
-  /// Writes (replacing an existing attribute of that name) a UTF-8 string. Variable length (the
-  /// default) is what h5py and most tools use, and no 64 KiB limit applies, so long texts
-  /// (scene TOML) fit.
+  /// Writes (replacing an existing attribute of that name) a UTF-8 string. Fixed length (the
+  /// default) keeps the text inside the object header, which the checksummed file format
+  /// protects; variable-length strings live in HDF5's global heap, which carries no checksum
+  /// (and a damaged one crashes HDF5 1.10 on read). In the checksummed format attributes of any
+  /// size fit (dense storage); the earliest format limits an object's attributes to 64 KiB.
   void WriteStringAttribute(const std::string& name, std::string_view value,
-                            StringStorage storage = StringStorage::kVariable);
+                            StringStorage storage = StringStorage::kFixed);
   /// A 1-D array of UTF-8 strings.
   void WriteStringArrayAttribute(const std::string& name, const std::vector<std::string>& values,
-                                 StringStorage storage = StringStorage::kVariable);
+                                 StringStorage storage = StringStorage::kFixed);
   /// A scalar native int64.
   void WriteIntAttribute(const std::string& name, std::int64_t value);
   /// A scalar native float64.
@@ -261,12 +280,17 @@ class Dataset : public Object {
   std::vector<Size> ChunkShape() const;
   bool HasDeflate() const;
   bool HasFletcher32() const;
+  /// Throws unless every filter of the dataset is one the wrapper knows (shuffle, deflate,
+  /// fletcher32) with parameters that fit the stored type: a damaged filter parameter (a
+  /// shuffle element size that is not the type's) would otherwise decode to wrong numbers
+  /// whose checksum, taken on the stored bytes, is fine. Reads call it.
+  void CheckFilters() const;
 
   /// Reads the whole dataset (row-major), converting to T; throws when the stored class is not
   /// numeric or a value does not fit T.
   template <typename T>
   std::vector<T> Read() const {
-    std::vector<T> values(static_cast<std::size_t>(NumElements()));
+    std::vector<T> values(CheckedCount(sizeof(T)));
     ReadRaw(ElementTypeOf<T>::value, values.data(), values.size());
     return values;
   }
@@ -294,6 +318,9 @@ class Dataset : public Object {
   }
 
  private:
+  /// NumElements(), refused (Error) when it times element_bytes exceeds kMaxReadBytes, so a
+  /// damaged dataspace cannot make a reader allocate without bound.
+  std::size_t CheckedCount(std::size_t element_bytes) const;
   void ReadRaw(ElementType type, void* values, std::size_t count) const;
   void WriteRaw(ElementType type, const void* values, std::size_t count);
   void BlockRaw(bool write, ElementType type, const std::vector<Size>& offset,
@@ -345,6 +372,16 @@ class Group : public Object {
   void Remove(const std::string& name);
 };
 
+/// On-disk format of a new file.
+enum class FileFormat {
+  /// HDF5 1.10's format (superblock 3, version-2 object headers): all metadata carries
+  /// checksums, so a damaged header is a read error rather than a wrong number.
+  kChecksummed,
+  /// The earliest format HDF5 can write (no metadata checksums), what tables were written in
+  /// before; kept so that readers of such files can be tested.
+  kEarliest,
+};
+
 /// An open HDF5 file; also its root group "/".
 class File : public Group {
  public:
@@ -353,7 +390,8 @@ class File : public Group {
   /// Opens an existing file. Throws Error when it does not exist or is not an HDF5 file.
   static File Open(const std::string& path, Mode mode = Mode::kReadOnly);
   /// Creates a file; with overwrite false, fails if the file exists.
-  static File Create(const std::string& path, bool overwrite = true);
+  static File Create(const std::string& path, bool overwrite = true,
+                     FileFormat format = FileFormat::kChecksummed);
 
   /// Writes buffered data to disk.
   void Flush();

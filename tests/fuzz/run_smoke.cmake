@@ -1,7 +1,7 @@
 # Runs one fuzz target for a fixed number of inputs from its seed corpus (ctest "fuzz" label).
 # The seeds stay untouched: libFuzzer writes new inputs to the first corpus directory, a fresh
 # WORK_DIR, and crash reproducers into WORK_DIR/artifacts.
-foreach(variable FUZZER SEEDS DICT WORK_DIR RUNS)
+foreach(variable FUZZER SEEDS DICT WORK_DIR RUNS MAX_LEN)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "run_smoke.cmake: -D${variable}=... missing")
   endif()
@@ -9,7 +9,7 @@ endforeach()
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/corpus ${WORK_DIR}/artifacts)
 execute_process(
-  COMMAND ${FUZZER} -runs=${RUNS} -seed=1 -max_len=4096 -timeout=10 -rss_limit_mb=2048
+  COMMAND ${FUZZER} -runs=${RUNS} -seed=1 -max_len=${MAX_LEN} -timeout=10 -rss_limit_mb=2048
           -dict=${DICT} -artifact_prefix=${WORK_DIR}/artifacts/ -print_final_stats=1
           ${WORK_DIR}/corpus ${SEEDS}
   RESULT_VARIABLE result)

@@ -35,6 +35,10 @@ struct TableContent {
   bool write_output_order = true;
   /// The root attribute `scene` (the wheelset API reads [state] and [wheelset] from it).
   std::string scene = "# written by tests/runtime/table_writer.h\n[table]\n";
+  /// The HDF5 file format (kEarliest: as tables were written before metadata checksums).
+  h5::FileFormat format = h5::FileFormat::kChecksummed;
+  /// Storage of the axes (the generator checksums them too; default: contiguous, unfiltered).
+  h5::DatasetOptions axis_storage = {};
 };
 
 /// n values from first to last, equally spaced (last exactly).
@@ -58,7 +62,7 @@ inline std::vector<TableAxis> WheelsetAxes(int y_nodes) {
 
 /// Writes content to path (overwriting) as a complete, valid table.
 inline void WriteTable(const std::string& path, const TableContent& content) {
-  h5::File file = h5::File::Create(path);
+  h5::File file = h5::File::Create(path, /*overwrite=*/true, content.format);
   file.WriteStringAttribute("format", "wrc-table");
   file.WriteIntAttribute("format_version", 1);
   file.WriteStringAttribute("wrc_version", "0.1.0-test");
@@ -72,7 +76,7 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
   std::vector<h5::Size> shape;
   for (const TableAxis& axis : content.axes) {
     h5::Dataset dataset = axes.WriteDataset<double>(
-        axis.name, {static_cast<h5::Size>(axis.values.size())}, axis.values);
+        axis.name, {static_cast<h5::Size>(axis.values.size())}, axis.values, content.axis_storage);
     dataset.WriteStringAttribute("unit", axis.unit);
     order.push_back(axis.name);
     shape.push_back(axis.values.size());

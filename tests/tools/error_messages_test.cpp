@@ -240,7 +240,7 @@ TEST_F(ErrorMessages, LateralPositionOutOfRange) {
 // Roll beyond the range of wheelset-on-track contact names the key and value.
 TEST_F(ErrorMessages, RollOutOfRange) {
   const fs::path case_file = WriteCaseWith("yaw = 0.0", "roll = 0.5");
-  ExpectBadInput(Solve(case_file), {"case.toml", "state.roll", "0.5", "0.2 rad"});
+  ExpectBadInput(Solve(case_file), {"case.toml", "state.roll", "0.5", "0.1 rad"});
 }
 
 TEST_F(ErrorMessages, LiftedWheelIsNoContact) {

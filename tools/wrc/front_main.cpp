@@ -20,6 +20,7 @@
 #include <system_error>
 
 #include "tools/wrc/commands.h"
+#include "wrc/output_file.h"
 
 namespace {
 
@@ -69,6 +70,12 @@ int RunSolve(int argc, char** argv) {
     // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
     const int code = app.exit(e);
     return code == 0 ? 0 : wrc::cli::kExitBadInput;
+  }
+  try {
+    wrc::FinishStandardOutput();
+  } catch (const std::exception& e) {
+    std::cerr << "wrc: error: " << e.what() << '\n';
+    return wrc::cli::kExitBadInput;
   }
   return exit_code;
 }

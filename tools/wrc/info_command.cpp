@@ -10,6 +10,7 @@
 
 #include "tools/wrc/commands.h"
 #include "wrc/generator.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::cli {
 namespace {
@@ -67,6 +68,7 @@ json InfoJson(const std::string& path, const TableInfo& info) {
       {"file", path},
       {"format", info.format},
       {"format_version", info.format_version},
+      {"warnings_count", info.warnings_count >= 0 ? json(info.warnings_count) : json(nullptr)},
       {"points", info.points},
       {"axes", axes},
       {"outputs", outputs},
@@ -163,6 +165,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
     std::cout << ' ' << kStatusNames[s] << ' ' << info.status_counts[s];
   }
   if (info.other_status > 0) std::cout << " invalid " << info.other_status;
+  if (info.warnings_count >= 0) std::cout << "; with warnings " << info.warnings_count;
   std::cout << "\nsolve time: total " << info.solve_time_total_s << " s, mean "
             << (info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0)
             << " s, max " << info.solve_time_max_s << " s\n";
@@ -191,6 +194,9 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->callback([=]() {
     try {
+      // The runtime's validation first (types, shapes, axes, values, format version): what
+      // info reads afterwards has passed every check a simulator's open makes.
+      const Table validated(*path);
       const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {
         std::cout << InfoJson(*path, info).dump(1) << '\n';

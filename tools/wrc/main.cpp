@@ -4,9 +4,12 @@
 
 #include <iostream>
 
+#include "runtime/hdf5/hdf5.h"
 #include "tools/wrc/commands.h"
+#include "wrc/output_file.h"
 
 int main(int argc, char** argv) {
+  wrc::h5::SkipLibraryTermination();  // every file is closed explicitly (hdf5.h)
   CLI::App app{"wrc: wheel-rail contact solver, table generator and verifier"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "wrc 0.1.0");
@@ -27,6 +30,12 @@ int main(int argc, char** argv) {
     // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
     const int code = app.exit(e);
     return code == 0 ? 0 : wrc::cli::kExitBadInput;
+  }
+  try {
+    wrc::FinishStandardOutput();
+  } catch (const std::exception& e) {
+    std::cerr << "wrc: error: " << e.what() << '\n';
+    return wrc::cli::kExitBadInput;
   }
   return exit_code;
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/halfspace.h"
+#include "wrc/output_file.h"
 #include "wrc/wheelrail.h"
 
 namespace wrc::cli {
@@ -63,12 +65,16 @@ json HalfspaceJson(const HalfspaceResult& r, double seconds) {
     message = "solver reached its iteration limit (normal residual " +
               std::to_string(r.normal_summary.residual) + ", tangential residual " +
               std::to_string(r.tangential_summary.residual) + ")";
+    if (!std::isfinite(r.fn) || !std::isfinite(r.fx) || !std::isfinite(r.fy)) {
+      message = "the solution is not finite";
+    }
   }
   return {{"status", ToString(r.status)},
           {"message", message},
           {"patches", r.status == SolverStatus::kNoContact ? json::array() : json::array({patch})},
           {"iterations", iterations},
-          {"timing_s", {{"total", seconds}}}};
+          {"timing_s", {{"total", seconds}}},
+          {"warnings", r.warnings}};
 }
 
 // Writes the fields as CSV, one row per element of the potential contact area (format in
@@ -76,8 +82,7 @@ json HalfspaceJson(const HalfspaceResult& r, double seconds) {
 void WriteHalfspaceFields(const std::filesystem::path& dir, const HalfspaceResult& r,
                           const json& summary) {
   std::filesystem::create_directories(dir);
-  std::ofstream out(dir / "fields.csv");
-  if (!out) throw InputError("--out " + dir.string() + ": cannot write fields.csv");
+  std::ostringstream out;
   out << "i,j,x,y,h,pn,px,py,sx,sy,state\n";
   out.precision(10);
   const Grid& g = r.grid;
@@ -91,7 +96,8 @@ void WriteHalfspaceFields(const std::filesystem::path& dir, const HalfspaceResul
           << (t ? static_cast<int>(r.state[k]) : (r.pressure[k] > 0.0 ? 1 : 0)) << '\n';
     }
   }
-  std::ofstream(dir / "summary.json") << summary.dump(1) << '\n';
+  WriteFileAtomically(dir / "fields.csv", out.str());
+  WriteFileAtomically(dir / "summary.json", summary.dump(1) + '\n');
 }
 
 json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
@@ -162,8 +168,7 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
   for (std::size_t n = 0; n < r.patches.size(); ++n) {
     const PatchResult& p = r.patches[n];
     const std::string stem = "patch" + std::to_string(n + 1);
-    std::ofstream out(dir / (stem + "_fields.csv"));
-    if (!out) throw InputError("--out " + dir.string() + ": cannot write " + stem + "_fields.csv");
+    std::ostringstream out;
     out << "i,j,x,s,h,pn,px,ps,sx,ss,wx,ws,state\n";
     out.precision(10);
     const Grid& g = p.grid;
@@ -178,16 +183,18 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
       }
     }
     if (!p.curve_y.empty()) {
-      std::ofstream curve(dir / (stem + "_curve.csv"));
+      std::ostringstream curve;
       curve << "j,s,y_tr,z_tr,angle\n";
       curve.precision(10);
       for (std::size_t j = 0; j < p.curve_y.size(); ++j) {
         curve << j << ',' << g.y(static_cast<int>(j)) << ',' << p.curve_y[j] << ',' << p.curve_z[j]
               << ',' << p.curve_angle[j] << '\n';
       }
+      WriteFileAtomically(dir / (stem + "_curve.csv"), curve.str());
     }
+    WriteFileAtomically(dir / (stem + "_fields.csv"), out.str());
   }
-  std::ofstream(dir / "summary.json") << summary.dump(1) << '\n';
+  WriteFileAtomically(dir / "summary.json", summary.dump(1) + '\n');
 }
 
 }  // namespace

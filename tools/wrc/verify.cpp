@@ -258,6 +258,7 @@ StoredScene::~StoredScene() {
 }
 
 std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
+  const Table validated(table.string());  // the runtime's checks, before any other read
   auto stored = std::make_unique<StoredScene>();
   const h5::File file = h5::File::Open(table.string());
   const std::string text = file.ReadStringAttribute("scene");

@@ -576,15 +576,22 @@ TEST(CaseIo, LoadReportsBrokenProfilesAtTheirCaseKey) {
 
 TEST(CaseIo, RejectsSpinWhoseOmegaOverflows) {
   // Found by tests/fuzz/fuzz_case: every value finite, yet omega = -(velocity / nominal_radius)
-  // · (1 + spin) overflowed to -inf and the case was accepted.
+  // · (1 + spin) overflowed to -inf and the case was accepted. At the largest accepted speed,
+  // 1e6 mm/s, a subnormal radius still overflows.
   const std::string with_spin = Replace(Replace(kWheelRailCase, "omega = -4.35", "spin = 0.0"),
-                                        "velocity = 2000.0", "velocity = 1e300");
-  ExpectCaseError(with_spin, "nominal_radius = 460.0", "nominal_radius = 1e-300",
+                                        "velocity = 2000.0", "velocity = 1e6");
+  ExpectCaseError(with_spin, "nominal_radius = 460.0", "nominal_radius = 1e-310",
                   {"state.spin = 0: ", "non-finite omega"}, "spin = 0.0");
   // The same sizes with omega given directly leave nothing to overflow.
-  EXPECT_EQ(ErrorOf(Replace(Replace(kWheelRailCase, "velocity = 2000.0", "velocity = 1e300"),
-                            "nominal_radius = 460.0", "nominal_radius = 1e-300")),
+  EXPECT_EQ(ErrorOf(Replace(Replace(kWheelRailCase, "velocity = 2000.0", "velocity = 1e6"),
+                            "nominal_radius = 460.0", "nominal_radius = 1e-310")),
             "");
+}
+
+TEST(CaseIo, RejectsValuesOutsideTheirPlausibleRange) {
+  ExpectCaseError(kWheelRailCase, "velocity = 2000.0", "velocity = 1e200",
+                  {"state.velocity = 1e+200: ", "within ±1e+06"});
+  ExpectCaseError(kWheelRailCase, "dx = 0.2", "dx = 1e6", {"grid.dx = 1e+06: ", "between"});
 }
 
 }  // namespace

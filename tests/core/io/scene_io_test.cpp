@@ -397,11 +397,11 @@ TEST(SceneIo, LoadSceneResolvesProfilesNextToTheFile) {
 }
 
 TEST(SceneIo, RejectsSpinAxisWhoseOmegaOverflows) {
-  // As for state.spin in a case file (found by tests/fuzz/fuzz_case): a spin axis on a 1e-300 mm
-  // wheel at 1e300 mm/s gives omega = -inf at every node.
+  // As for state.spin in a case file (found by tests/fuzz/fuzz_case): a spin axis on a 1e-310 mm
+  // wheel at the largest accepted speed, 1e6 mm/s, gives omega = -inf at every node.
   std::string text = SceneWith(kSpecTable);
-  text.replace(text.find("velocity = 2000.0"), 17, "velocity = 1e300");
-  text.replace(text.find("nominal_radius = 460.0"), 22, "nominal_radius = 1e-300");
+  text.replace(text.find("velocity = 2000.0"), 17, "velocity = 1e6");
+  text.replace(text.find("nominal_radius = 460.0"), 22, "nominal_radius = 1e-310");
   ExpectSceneError(text,
                    "spin    =", {"table.spin = {...}: ", "spin = -0.01 gives a non-finite omega"});
 }

@@ -1,0 +1,229 @@
+// `wrc info` and `wrc verify` on damaged or invalid tables: exit 2 with a message naming the
+// file and the problem, never a crash and never a description of numbers that are not there.
+// And the table file of `wrc generate`: never written through a FIFO or a planted symlink, and
+// a failed write leaves no half table.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/generator/generator_test_util.h"
+#include "tests/runtime/table_writer.h"
+
+namespace wrc::test {
+namespace {
+
+TableContent ValidTable() {
+  TableContent content;
+  content.axes = {{"y", {-2.0, -1.0, 0.0, 1.5, 2.0}, "mm"}, {"roll", {-0.002, 0.0, 0.002}, "rad"}};
+  content.outputs = {"fy", "fx"};
+  content.function = [](int k, const std::vector<double>& x) { return 100.0 * k + x[0]; };
+  content.format = h5::FileFormat::kEarliest;
+  return content;
+}
+
+// Runs info and verify on the table; both must exit 2 and name `problem` on stderr.
+void ExpectRefused(const fs::path& table, const std::string& problem) {
+  for (const std::string command : {" info ", " info --json ", " verify --samples 2 "}) {
+    const CommandResult result =
+        RunCommand(Quoted(WrcBinary()) + command + Quoted(table.string()), table.parent_path());
+    EXPECT_EQ(result.exit_code, 2) << command << ": " << result.err;
+    EXPECT_NE(result.err.find(problem), std::string::npos) << command << ": " << result.err;
+    EXPECT_TRUE(result.out.empty() || command == " verify --samples 2 ") << result.out;
+  }
+}
+
+template <typename Edit>
+fs::path WriteEdited(const ScratchDir& dir, const std::string& name, TableContent content,
+                     Edit edit) {
+  const fs::path path = dir / name;
+  WriteTable(path.string(), content);
+  h5::File file = h5::File::Open(path.string(), h5::File::Mode::kReadWrite);
+  edit(file);
+  return path;
+}
+
+TEST(CliDamagedTable, AxisOfZeroLength) {
+  ScratchDir dir("damaged_empty_axis");
+  TableContent content = ValidTable();
+  content.axes[1].values.clear();
+  const fs::path table = dir / "empty.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "is empty");
+}
+
+TEST(CliDamagedTable, AxisNotAscending) {
+  ScratchDir dir("damaged_descending");
+  TableContent content = ValidTable();
+  content.axes[0].values = {-2.0, -1.0, 0.5, 0.0, 2.0};
+  const fs::path table = dir / "descending.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "strictly ascending");
+}
+
+TEST(CliDamagedTable, NonFiniteValueAtAnOkNode) {
+  ScratchDir dir("damaged_nan");
+  TableContent content = ValidTable();
+  content.function = [](int k, const std::vector<double>& x) {
+    return k == 1 && x[0] == 0.0 ? std::numeric_limits<double>::quiet_NaN() : x[0];
+  };
+  const fs::path table = dir / "nan.h5";
+  WriteTable(table.string(), content);
+  ExpectRefused(table, "non-finite value");
+}
+
+TEST(CliDamagedTable, IntegerOutput) {
+  ScratchDir dir("damaged_int");
+  const fs::path table = WriteEdited(dir, "int.h5", ValidTable(), [](h5::File& file) {
+    h5::Group outputs = file.OpenGroup("outputs");
+    outputs.Remove("fx");
+    outputs.WriteDataset("fx", {5, 3}, std::vector<std::int32_t>(15, 0));
+  });
+  ExpectRefused(table, "must be floating point (float64), is int32");
+}
+
+TEST(CliDamagedTable, UnknownFormatVersion) {
+  ScratchDir dir("damaged_version");
+  const fs::path table = WriteEdited(dir, "v7.h5", ValidTable(), [](h5::File& file) {
+    file.WriteIntAttribute("format_version", 7);
+  });
+  ExpectRefused(table, "format_version' is 7");
+}
+
+// An optional object that is there but cannot be read as what it should be (a damaged object
+// header opens as neither group nor dataset) is an error, not shown as absent (zero solve time).
+TEST(CliDamagedTable, OptionalObjectOfTheWrongKind) {
+  ScratchDir dir("damaged_solve_time");
+  const fs::path table = WriteEdited(dir, "time.h5", ValidTable(), [](h5::File& file) {
+    file.Remove("solve_time_s");
+    file.CreateGroup("solve_time_s");
+  });
+  const CommandResult result =
+      RunCommand(Quoted(WrcBinary()) + " info " + Quoted(table.string()), dir.path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("solve_time_s: cannot be opened"), std::string::npos) << result.err;
+}
+
+// One byte of the float64 datatype messages changed, the size 8 read as 65544.
+TEST(CliDamagedTable, FloatOfAbsurdSize) {
+  ScratchDir dir("damaged_float_size");
+  const fs::path table = dir / "float.h5";
+  WriteTable(table.string(), ValidTable());
+  std::vector<char> bytes;
+  {
+    std::ifstream in(table, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::vector<char> message = {0x11, 0x20, 0x3f, 0x00, 0x08, 0x00, 0x00, 0x00};
+  int patched = 0;
+  for (auto it = bytes.begin();
+       (it = std::search(it, bytes.end(), message.begin(), message.end())) != bytes.end(); ++it) {
+    *(it + 6) = 0x01;
+    ++patched;
+  }
+  ASSERT_GT(patched, 0);
+  std::ofstream(table, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  ExpectRefused(table, "not a standard");
+}
+
+// ---- the table file that `wrc generate` writes ---------------------------------------------
+
+std::string SmallScene() {
+  return TinyScene("axes = [\"y\"]\ny = [0.0, 1.0]\noutputs = [\"fx\", \"fz\"]");
+}
+
+CommandResult Generate(const ScratchDir& dir, const std::string& output,
+                       const std::string& prefix = "") {
+  WriteFile(dir / "scene.toml", SmallScene());
+  return RunCommand(prefix + Quoted(WrcBinary()) + " generate " +
+                        Quoted((dir / "scene.toml").string()) + " -o " + Quoted(output),
+                    dir.path());
+}
+
+TEST(CliGenerateOutput, AFifoIsNotReplaced) {
+  ScratchDir dir("output_fifo");
+  const fs::path fifo = dir / "table.h5";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const CommandResult result = Generate(dir, fifo.string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("is a FIFO"), std::string::npos) << result.err;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST(CliGenerateOutput, ASymlinkPlantedAtTheTemporaryNameIsNotFollowed) {
+  ScratchDir dir("output_symlink");
+  WriteFile(dir / "victim", "keep");
+  fs::create_symlink(dir / "victim", dir / "table.h5.tmp");
+  const CommandResult result = Generate(dir, (dir / "table.h5").string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("symbolic link"), std::string::npos) << result.err;
+  EXPECT_EQ(ReadFile(dir / "victim"), "keep");
+  EXPECT_FALSE(fs::exists(dir / "table.h5"));
+}
+
+// A file-size limit makes the table's writes fail (EFBIG) as a full disk would.
+TEST(CliGenerateOutput, AFullDiskIsExit2AndNoHalfTable) {
+  ScratchDir dir("output_full");
+  const CommandResult result =
+      Generate(dir, (dir / "table.h5").string(), "ulimit -f 16; trap '' XFSZ; ");
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("table.h5.tmp"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(dir / "table.h5"));
+  EXPECT_FALSE(fs::exists(dir / "table.h5.tmp"));
+}
+
+// Every solved point's warnings are counted in the table (root attribute warnings_count): with
+// a rail profile whose zig-zag is repaired, each of the two points has one.
+TEST(CliGenerateOutput, WarningsAreCountedInTheTable) {
+  ScratchDir dir("output_warnings");
+  std::istringstream in(ReadFile(ProfilePath("MBench_UIC60_v3.prr")));
+  std::ofstream rail(dir / "zigzag.prr");
+  int line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    rail << line << '\n';
+    if (++line_number == 300) {  // the point after it moved back across it
+      std::istringstream fields(line);
+      double y = 0.0, z = 0.0;
+      fields >> y >> z;
+      rail << y - 0.3 << '\t' << z << '\n';
+    }
+  }
+  rail.close();
+  std::string scene = TinyScene("axes = [\"y\"]\ny = [0.0, 1.0]\noutputs = [\"fx\", \"fz\"]");
+  const std::string original = ProfilePath("MBench_UIC60_v3.prr");
+  scene.replace(scene.find(original), original.size(), (dir / "zigzag.prr").string());
+  WriteFile(dir / "scene.toml", scene);
+  const fs::path table = dir / "table.h5";
+  const CommandResult result =
+      RunCommand(Quoted(WrcBinary()) + " generate " + Quoted((dir / "scene.toml").string()) +
+                     " -o " + Quoted(table.string()),
+                 dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(h5::File::Open(table.string()).ReadIntAttribute("warnings_count"), 2);
+  const CommandResult info =
+      RunCommand(Quoted(WrcBinary()) + " info --json " + Quoted(table.string()), dir.path());
+  EXPECT_NE(info.out.find("\"warnings_count\": 2"), std::string::npos) << info.out;
+}
+
+TEST(CliTableCommands, FullStandardOutputIsAnError) {
+  ScratchDir dir("info_full");
+  const fs::path table = dir / "table.h5";
+  WriteTable(table.string(), ValidTable());
+  // RunCommand redirects stdout itself; here stdout is /dev/full.
+  const int status = std::system(
+      (Quoted(WrcBinary()) + " info " + Quoted(table.string()) + " >/dev/full 2>/dev/null")
+          .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+}  // namespace
+}  // namespace wrc::test

@@ -1,0 +1,179 @@
+// Damaged table files: a changed datatype message, a changed filter parameter and every single
+// changed byte of a small table give an error code and a message, or the very same numbers as
+// the intact file; never a crash or a different number.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "runtime/hdf5/hdf5.h"
+#include "tests/runtime/table_writer.h"
+#include "wrc/runtime.h"
+
+namespace {
+
+using wrc::h5::FileFormat;
+using wrc::test::ScratchFile;
+using wrc::test::TableContent;
+
+TableContent SmallTable(FileFormat format) {
+  TableContent content;
+  content.axes = {{"y", {-2.0, -1.0, 0.0, 1.5, 2.0}, "mm"}, {"roll", {-0.002, 0.0, 0.002}, "rad"}};
+  content.outputs = {"fy", "fx"};
+  content.function = [](int k, const std::vector<double>& x) {
+    return 100.0 * k + x[0] + 10.0 * x[1];
+  };
+  content.format = format;
+  content.axis_storage = wrc::h5::CompressedChecked();
+  return content;
+}
+
+std::vector<char> ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+void WriteBytes(const std::string& path, const std::vector<char>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// HDF5's encoding of an IEEE float64 little-endian datatype message: version 1, class float,
+// bit field, size 8, offset 0, precision 64, exponent at 52 of 11 bits, mantissa at 0 of 52
+// bits, bias 1023.
+const std::vector<char> kFloat64Message = {0x11, 0x20, 0x3f,       0x00, 0x08, 0x00, 0x00,
+                                           0x00, 0x00, 0x00,       0x40, 0x00, 0x34, 0x0b,
+                                           0x00, 0x34, char(0xff), 0x03, 0x00, 0x00};
+
+// Values of every output at a few points inside the table, or the open/eval error code.
+struct Evaluation {
+  int code = 0;
+  std::vector<double> values;
+};
+
+Evaluation Evaluate(const std::string& path) {
+  Evaluation result;
+  wrc_table* table = nullptr;
+  result.code = wrc_table_open(path.c_str(), &table);
+  if (result.code != 0) return result;
+  for (const double y : {-1.7, 0.3, 1.9}) {
+    for (const double roll : {-0.0015, 0.001}) {
+      const double point[2] = {y, roll};
+      double out[2] = {0.0, 0.0};
+      const int flags = wrc_table_eval(table, point, out);
+      if (flags < 0) {
+        result.code = flags;
+        break;
+      }
+      result.values.insert(result.values.end(), {out[0], out[1]});
+    }
+  }
+  wrc_table_close(table);
+  return result;
+}
+
+// Patches the size field of every float64 datatype message (8 -> 65544 bytes, one byte).
+int PatchFloatSizes(std::vector<char>* bytes) {
+  int patched = 0;
+  for (auto it = bytes->begin(); (it = std::search(it, bytes->end(), kFloat64Message.begin(),
+                                                   kFloat64Message.end())) != bytes->end();
+       ++it) {
+    *(it + 6) = 0x01;
+    ++patched;
+  }
+  return patched;
+}
+
+TEST(RuntimeDamage, FloatOfAbsurdSizeIsAnErrorInTheEarliestFormat) {
+  ScratchFile scratch("float-size");
+  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kEarliest));
+  ASSERT_EQ(Evaluate(scratch.path()).code, 0) << wrc_last_error();
+  std::vector<char> bytes = ReadBytes(scratch.path());
+  ASSERT_GT(PatchFloatSizes(&bytes), 0);
+  WriteBytes(scratch.path(), bytes);
+  const Evaluation damaged = Evaluate(scratch.path());
+  EXPECT_EQ(damaged.code, WRC_ERR_FORMAT) << wrc_last_error();
+  EXPECT_NE(std::string(wrc_last_error()).find("not a standard type"), std::string::npos)
+      << wrc_last_error();
+}
+
+TEST(RuntimeDamage, FloatOfAbsurdSizeIsAnErrorInTheChecksummedFormat) {
+  ScratchFile scratch("float-size-v110");
+  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kChecksummed));
+  std::vector<char> bytes = ReadBytes(scratch.path());
+  ASSERT_GT(PatchFloatSizes(&bytes), 0);
+  WriteBytes(scratch.path(), bytes);
+  EXPECT_LT(Evaluate(scratch.path()).code, 0);
+}
+
+TEST(RuntimeDamage, ShuffleOfTheWrongElementSizeIsAnError) {
+  ScratchFile scratch("shuffle");
+  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kEarliest));
+  // Pipeline message entry of the shuffle filter in the earliest format: id 2, name length 8,
+  // flags 1 (optional), one parameter, "shuffle\0", then the element size 8.
+  const std::vector<char> shuffle = {0x02, 0x00, 0x08, 0x00, 0x01, 0x00, 0x01, 0x00, 's',  'h',
+                                     'u',  'f',  'f',  'l',  'e',  0x00, 0x08, 0x00, 0x00, 0x00};
+  std::vector<char> bytes = ReadBytes(scratch.path());
+  int patched = 0;
+  for (auto it = bytes.begin();
+       (it = std::search(it, bytes.end(), shuffle.begin(), shuffle.end())) != bytes.end(); ++it) {
+    *(it + 16) = 0x02;
+    ++patched;
+  }
+  ASSERT_GT(patched, 0);
+  WriteBytes(scratch.path(), bytes);
+  const Evaluation damaged = Evaluate(scratch.path());
+  EXPECT_EQ(damaged.code, WRC_ERR_FORMAT) << wrc_last_error();
+  EXPECT_NE(std::string(wrc_last_error()).find("filter"), std::string::npos) << wrc_last_error();
+}
+
+// Tables written before: HDF5's earliest format with variable-length string attributes (what
+// the writer used then) still open and give the same numbers.
+TEST(RuntimeDamage, EarliestFormatWithVariableLengthStringsStillOpens) {
+  ScratchFile current("current");
+  wrc::test::WriteTable(current.path(), SmallTable(FileFormat::kChecksummed));
+  ScratchFile old("old");
+  wrc::test::WriteTable(old.path(), SmallTable(FileFormat::kEarliest));
+  {
+    wrc::h5::File file = wrc::h5::File::Open(old.path(), wrc::h5::File::Mode::kReadWrite);
+    const auto variable = wrc::h5::StringStorage::kVariable;
+    file.WriteStringAttribute("format", "wrc-table", variable);
+    file.OpenGroup("axes").WriteStringArrayAttribute("order", {"y", "roll"}, variable);
+    file.OpenGroup("outputs").WriteStringArrayAttribute("order", {"fy", "fx"}, variable);
+  }
+  const Evaluation expected = Evaluate(current.path());
+  ASSERT_EQ(expected.code, 0) << wrc_last_error();
+  const Evaluation result = Evaluate(old.path());
+  ASSERT_EQ(result.code, 0) << wrc_last_error();
+  EXPECT_EQ(result.values, expected.values);
+}
+
+// Every byte of a checksummed table, one at a time: an error, or exactly the intact numbers.
+TEST(RuntimeDamage, NoSingleChangedByteGivesADifferentNumber) {
+  ScratchFile intact("intact");
+  wrc::test::WriteTable(intact.path(), SmallTable(FileFormat::kChecksummed));
+  const Evaluation expected = Evaluate(intact.path());
+  ASSERT_EQ(expected.code, 0) << wrc_last_error();
+  const std::vector<char> bytes = ReadBytes(intact.path());
+  ScratchFile scratch("flipped");
+  int refused = 0;
+  for (std::size_t offset = 0; offset < bytes.size(); ++offset) {
+    std::vector<char> damaged = bytes;
+    damaged[offset] = static_cast<char>(damaged[offset] ^ 0x5a);
+    WriteBytes(scratch.path(), damaged);
+    const Evaluation result = Evaluate(scratch.path());
+    if (result.code != 0) {
+      ++refused;
+      continue;
+    }
+    ASSERT_EQ(result.values, expected.values) << "byte " << offset << " changed the numbers";
+  }
+  EXPECT_GT(refused, 0);
+}
+
+}  // namespace

@@ -1,0 +1,129 @@
+// Files and paths as a hostile user gives them to `wrc solve` and `wrc info`: inputs that are
+// FIFOs or devices are refused without blocking, a full standard output is an error, and --out
+// never replaces something that is not a regular file.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
+const fs::path kCase =
+    fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
+
+struct Outcome {
+  int exit_code = -1;
+  std::string err;
+};
+
+std::string Quoted(const std::string& word) {
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+class CliFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("wrc_cli_files_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `wrc ARGS` with stdout sent to `out`; `timeout 20` turns a hang into exit 124.
+  Outcome Run(const std::string& args, const std::string& out = "/dev/null") const {
+    const fs::path err = dir_ / "stderr";
+    const std::string command = "timeout 20 " + Quoted(kWrc.string()) + " " + args + " >" +
+                                Quoted(out) + " 2>" + Quoted(err.string());
+    const int status = std::system(command.c_str());
+    Outcome outcome;
+    if (status != -1 && WIFEXITED(status)) outcome.exit_code = WEXITSTATUS(status);
+    std::ifstream in(err);
+    std::stringstream text;
+    text << in.rdbuf();
+    outcome.err = text.str();
+    return outcome;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CliFiles, CaseThatIsAFifoIsRefusedWithoutBlocking) {
+  const fs::path fifo = dir_ / "case.toml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const Outcome outcome = Run("solve " + Quoted(fifo.string()));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.err;
+  EXPECT_NE(outcome.err.find("not a regular file"), std::string::npos) << outcome.err;
+}
+
+TEST_F(CliFiles, CaseThatIsADeviceIsRefused) {
+  const Outcome outcome = Run("solve /dev/zero");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.err;
+  EXPECT_NE(outcome.err.find("/dev/zero: is not a regular file"), std::string::npos) << outcome.err;
+}
+
+TEST_F(CliFiles, TableThatIsAFifoIsRefusedWithoutBlocking) {
+  const fs::path fifo = dir_ / "table.h5";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const Outcome outcome = Run("info " + Quoted(fifo.string()));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.err;
+  EXPECT_NE(outcome.err.find("not a regular file"), std::string::npos) << outcome.err;
+}
+
+TEST_F(CliFiles, FullStandardOutputIsAnError) {
+  for (const std::string flags : {"", " --json"}) {
+    const Outcome outcome = Run("solve " + Quoted(kCase.string()) + flags, "/dev/full");
+    EXPECT_EQ(outcome.exit_code, 2) << flags << ": " << outcome.err;
+    EXPECT_NE(outcome.err.find("standard output"), std::string::npos) << outcome.err;
+  }
+}
+
+TEST_F(CliFiles, OutFilesNeverReplaceAFifo) {
+  const fs::path out = dir_ / "fields";
+  fs::create_directories(out);
+  ASSERT_EQ(::mkfifo((out / "fields.csv").c_str(), 0600), 0);
+  const Outcome outcome = Run("solve " + Quoted(kCase.string()) + " --out " + Quoted(out.string()));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.err;
+  EXPECT_NE(outcome.err.find("is a FIFO"), std::string::npos) << outcome.err;
+  EXPECT_TRUE(fs::is_fifo(out / "fields.csv"));
+  EXPECT_FALSE(fs::exists(out / "fields.csv.tmp"));
+}
+
+TEST_F(CliFiles, OutFilesAreWrittenWhole) {
+  const fs::path out = dir_ / "fields";
+  const Outcome outcome = Run("solve " + Quoted(kCase.string()) + " --out " + Quoted(out.string()));
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  EXPECT_GT(fs::file_size(out / "fields.csv"), 1000u);
+  EXPECT_GT(fs::file_size(out / "summary.json"), 10u);
+  EXPECT_FALSE(fs::exists(out / "fields.csv.tmp"));
+}
+
+// A file-size limit (64 blocks of 512 bytes in sh) makes the writes of the 97 KB fields.csv fail
+// (EFBIG) as a full disk would.
+TEST_F(CliFiles, OutOnAFullDiskIsAnErrorAndLeavesNoFile) {
+  const fs::path out = dir_ / "fields";
+  const std::string command = "ulimit -f 64; trap '' XFSZ; timeout 20 " + Quoted(kWrc.string()) +
+                              " solve " + Quoted(kCase.string()) + " --out " +
+                              Quoted(out.string()) + " >/dev/null 2>" +
+                              Quoted((dir_ / "stderr").string());
+  const int status = std::system(("sh -c " + Quoted(command)).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_FALSE(fs::exists(out / "fields.csv"));
+  EXPECT_FALSE(fs::exists(out / "fields.csv.tmp"));
+}
+
+}  // namespace
