@@ -1,4 +1,4 @@
-// The visible half-space cases of ../shared/reference against CONTACT's results (issues 2, 3).
+// The visible half-space cases of ../shared/reference against CONTACT's results.
 
 #include <gtest/gtest.h>
 

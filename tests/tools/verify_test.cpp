@@ -1,4 +1,4 @@
-// `wrc verify` on small tables: errors shrink when the table is refined (issue 8), JSON per
+// `wrc verify` on small tables: errors shrink when the table is refined, JSON per
 // SPEC §5, the tolerance gate.
 
 #include <gtest/gtest.h>

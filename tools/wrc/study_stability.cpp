@@ -1,4 +1,4 @@
-// `wrc study stability`: the hard cases of issue 9 swept in fine steps with the planar and the
+// `wrc study stability`: the hard cases swept in fine steps with the planar and the
 // curved method, with the properties that must hold checked and reported (CSV, gnuplot PNGs
 // and a Markdown summary).
 
@@ -347,7 +347,7 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
   study->require_subcommand(1);
   AddCostStudies(*study, exit_code);
-  auto* stability = study->add_subcommand("stability", "Sweep the hard cases (issue 9) and report");
+  auto* stability = study->add_subcommand("stability", "Sweep the hard cases (two-point, flange, merging, grooves) and report");
   auto out = std::make_shared<std::string>("docs/stability");
   auto profiles = std::make_shared<std::string>("../shared/profiles");
   auto quick = std::make_shared<bool>(false);

@@ -499,7 +499,7 @@ TEST(CaseIo, LoadChecksFiles) {
 
 // A profile file that exists but does not read as a profile is reported at the case key that
 // names it, with the case file and line, the value as written and the profile's own file, line
-// and problem (issue 9); the wheel, mirrored or not, is checked the same way.
+// and problem; the wheel, mirrored or not, is checked the same way.
 TEST(CaseIo, LoadReportsBrokenProfilesAtTheirCaseKey) {
   const fs::path dir = fs::temp_directory_path() / "wrc_case_io_broken_profile";
   fs::remove_all(dir);

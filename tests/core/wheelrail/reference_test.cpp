@@ -1,4 +1,4 @@
-// Wheel–rail cases of ../shared/reference against CONTACT (issues 4 and 5).
+// Wheel–rail cases of ../shared/reference against CONTACT.
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Hard cases stay stable (issue 9), on a coarse grid so the suite stays fast; the fine sweeps
+// Hard cases stay stable, on a coarse grid so the suite stays fast; the fine sweeps
 // with plots are `wrc study stability` (docs/stability/).
 
 #include <gtest/gtest.h>
