@@ -347,7 +347,8 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
   study->require_subcommand(1);
   AddCostStudies(*study, exit_code);
-  auto* stability = study->add_subcommand("stability", "Sweep the hard cases (two-point, flange, merging, grooves) and report");
+  auto* stability = study->add_subcommand(
+      "stability", "Sweep the hard cases (two-point, flange, merging, grooves) and report");
   auto out = std::make_shared<std::string>("docs/stability");
   auto profiles = std::make_shared<std::string>("../shared/profiles");
   auto quick = std::make_shared<bool>(false);
