@@ -253,7 +253,10 @@ bool Splittable(const RefineSettings& settings, const SceneAxis& axis, std::size
   return width >= 2.0 * MinStep(settings, axis);
 }
 
-std::vector<RefineSample> DrawSamples(const Axes& axes, const RefineSettings& settings, int pass) {
+}  // namespace
+
+std::vector<RefineSample> DrawRefineSamples(const Axes& axes, const RefineSettings& settings,
+                                            int pass) {
   std::vector<RefineSample> samples;
   for (std::size_t k = 0; k < axes.size(); ++k) {
     const std::vector<double>& nodes = axes[k].values;
@@ -281,6 +284,8 @@ std::vector<RefineSample> DrawSamples(const Axes& axes, const RefineSettings& se
   }
   return samples;
 }
+
+namespace {
 
 struct SampleRun {
   std::vector<PointResult> results;
@@ -360,11 +365,6 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
 
 // ---- errors ---------------------------------------------------------------------------------
 
-bool IsForce(const std::string& name) {
-  return name == "fx" || name == "fy" || name == "fz" || name == "fx_ws" || name == "fy_ws" ||
-         name == "fz_ws";
-}
-
 // How the refined outputs' errors are measured: per output its index in the scene's outputs
 // and either an absolute tolerance or the fraction of the local load.
 struct ErrorModel {
@@ -383,7 +383,7 @@ ErrorModel MakeErrorModel(const Scene& scene, const RefineSettings& settings) {
     const auto it = std::find(scene.outputs.begin(), scene.outputs.end(), name);
     model.outputs.push_back(static_cast<std::size_t>(it - scene.outputs.begin()));
     const auto abs = settings.absolute.find(name);
-    model.absolute.push_back(IsForce(name) ? kNaN : abs->second);
+    model.absolute.push_back(IsForceOutput(name) ? kNaN : abs->second);
   }
   for (std::size_t a = 0; a < scene.axes.size(); ++a) {
     if (scene.axes[a].name == "fz") model.fz_axis = static_cast<int>(a);
@@ -707,7 +707,6 @@ class Refinement {
     if (options_.max_points == 0) return 0;
     return options_.max_points > computed_ ? options_.max_points - computed_ : 1;
   }
-  bool BudgetUsed() const { return options_.max_points > 0 && computed_ >= options_.max_points; }
   GenerateSummary Interrupted(GenerateSummary summary) {
     Broadcast(cluster_, PassKind::kStop, {});
     summary.interrupted = true;
@@ -897,7 +896,7 @@ GenerateSummary Refinement::RunRoot() {
     const Axes& previous = passes[static_cast<std::size_t>(pass - 1)];
     TableData old =
         LoadPassJournal(PassJournal(work_, pass - 1), PointCount(previous), scene_.outputs.size());
-    const std::vector<RefineSample> samples = DrawSamples(previous, settings_, pass - 1);
+    const std::vector<RefineSample> samples = DrawRefineSamples(previous, settings_, pass - 1);
     std::optional<SampleRun> run = RunSamples(pass - 1, samples);
     if (!run) return Interrupted({});
     known.emplace(previous, std::move(old), passes.back(), samples, std::move(run->results));
@@ -919,7 +918,7 @@ GenerateSummary Refinement::RunRoot() {
     if (pass >= settings_.max_passes) {
       stop_reason = "pass limit (" + std::to_string(settings_.max_passes) + " passes)";
     } else {
-      samples = DrawSamples(axes, settings_, pass);
+      samples = DrawRefineSamples(axes, settings_, pass);
       sample_run = RunSamples(pass, samples);
       if (!sample_run) return Interrupted(grid);
       const RefineDecision decision =
@@ -1023,11 +1022,6 @@ double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& da
     sum += weight * data.values[k][flat];
   }
   return sum;
-}
-
-std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
-                                            const RefineSettings& settings, int pass) {
-  return DrawSamples(axes, settings, pass);
 }
 
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,

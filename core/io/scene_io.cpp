@@ -276,13 +276,6 @@ std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& tabl
   return outputs;
 }
 
-bool IsForceOutput(std::string_view name) {
-  for (std::string_view force : {"fx", "fy", "fz", "fx_ws", "fy_ws", "fz_ws"}) {
-    if (name == force) return true;
-  }
-  return false;
-}
-
 std::int64_t ReadInteger(const Section& section, std::string_view key, std::int64_t fallback,
                          std::int64_t min, std::int64_t max) {
   const toml::node* node = section.Find(key);
@@ -534,6 +527,13 @@ std::vector<std::size_t> Scene::Shape() const {
   std::vector<std::size_t> shape;
   for (const SceneAxis& axis : axes) shape.push_back(axis.values.size());
   return shape;
+}
+
+bool IsForceOutput(std::string_view name) {
+  for (std::string_view force : {"fx", "fy", "fz", "fx_ws", "fy_ws", "fz_ws"}) {
+    if (name == force) return true;
+  }
+  return false;
 }
 
 std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed) {

@@ -87,6 +87,10 @@ inline constexpr std::string_view kSceneOutputNames[] = {
     "fx_ws", "fy_ws", "fz_ws", "n_patches", "contact_y", "contact_angle",
     "pmax",  "z"};
 
+/// True for the force outputs fx fy fz fx_ws fy_ws fz_ws, whose errors are measured relative to
+/// the local wheel load.
+bool IsForceOutput(std::string_view name);
+
 /// The outputs used when `table.outputs` is absent: fx fy fz mx my mz n_patches contact_y
 /// contact_angle pmax, plus z when fz is prescribed (fz is in the list anyway).
 std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);

@@ -280,11 +280,6 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
   return stored;
 }
 
-bool IsForceOutput(const std::string& name) {
-  return name == "fx" || name == "fy" || name == "fz" || name == "fx_ws" || name == "fy_ws" ||
-         name == "fz_ws";
-}
-
 void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& points, int threads,
                   std::vector<std::vector<double>>* values, std::vector<int>* status,
                   std::vector<double>* seconds) {

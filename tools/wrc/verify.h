@@ -54,9 +54,6 @@ struct Verification {
 /// that cannot be read.
 Verification VerifyTable(const VerifyOptions& options);
 
-/// True for the outputs whose errors are also given relative to the local wheel load.
-bool IsForceOutput(const std::string& name);
-
 /// Exact solves of the scene at the given points (all threads); each result holds the scene's
 /// outputs in order, status as in VerifiedPoint.
 void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& points, int threads,
