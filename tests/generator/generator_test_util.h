@@ -61,8 +61,10 @@ inline std::string TinyScene(const std::string& table, const std::string& state 
        << "[grid]\ndx = 1.0\nds = 1.0\n"
        << "[effects]\ntangential = " << (tangential ? "true" : "false") << "\n"
        << "[state]\n"
-       << state << "\n"
-       << "[table]\n"
+       << state
+       << "\n"
+       // Every case states its forward velocity; 2 m/s unless the test gives its own.
+       << (state.find("velocity") == std::string::npos ? "velocity = 2000.0\n" : "") << "[table]\n"
        << table << "\n";
   return text.str();
 }
