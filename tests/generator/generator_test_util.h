@@ -1,6 +1,6 @@
 #pragma once
-// Helpers of the generator tests: scratch directories, a tiny scene, bit-exact table comparison
-// and running the `wrc` binary.
+// Shared parts of the generator tests: scratch directories, a tiny scene, bit-exact table
+// comparison and running the `wrc` binary.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
