@@ -557,7 +557,7 @@ SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const 
   // Preconditioned with the 3 × 3 centre M of the inverse influence matrix (as NormCG's FFT
   // preconditioner, Vollebregt 2014, but local). The full inverse has a symbol that vanishes
   // for smooth fields, which restricted to a narrow contact leaves the smooth modes as badly
-  // conditioned as before (tried in session 3: no gain on the multi-region heavy-haul patches);
+  // conditioned as before (tried: no gain on the multi-region heavy-haul patches);
   // the truncated stencil keeps a positive symbol there and halves the iterations on every
   // heavy-haul case. M restricted to the contact is positive definite (LocalInverse checks the
   // symbol), so this is PCG on the contact set; under force control z is centred like r.

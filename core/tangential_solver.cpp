@@ -448,7 +448,7 @@ TangentialSummary SolveTangential(const SteadyRollingOperator& op, const Tangent
   // The first pays while its direct work, ~3.3 instructions per pair of contact elements,
   // costs less than the product (~115 per transform point) and the near rows' pairs together:
   // an instruction ratio of ~35, less in time because the large products wait on memory.
-  // kDirectMargin = 24 (session 6, timed): heavy_haul_z1.087 and z1.162 are direct (z1.162's
+  // kDirectMargin = 24 (timed): heavy_haul_z1.087 and z1.162 are direct (z1.162's
   // tangential solve 8.2 → 5.6 ms against 16), z1.194 takes the product (64 would make it
   // direct and cost it 4 ms), the Manchester cases are within ±0.2 ms of 16.
   // Mixing starts once a sweep contracts the change by less than kSlowContraction.

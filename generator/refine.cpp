@@ -52,7 +52,7 @@ enum class PassKind : char { kGrid = 'g', kFinal = 'f', kStop = 's' };
 
 using Axes = std::vector<SceneAxis>;
 
-// ---- small helpers --------------------------------------------------------------------------
+// ---- small functions --------------------------------------------------------------------------
 
 std::string HexDouble(double value) {
   char text[40];

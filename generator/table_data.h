@@ -42,8 +42,8 @@ struct TableProvenance {
   std::vector<std::pair<std::string, std::string>> attributes;
 };
 
-/// Writes the table file exactly per SPEC §4.2 (plus /outputs 'order', /errors and the
-/// warm_start attribute, documented in tables/README.md). Every point must be finished.
+/// Writes the table file exactly per docs/reference/table-layout.md (plus /outputs 'order', /errors
+/// and the warm_start attribute, documented in tables/README.md). Every point must be finished.
 void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const TableData& data,
                     const TableProvenance& provenance);
 

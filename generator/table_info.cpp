@@ -1,5 +1,5 @@
 // ReadTableInfo(): what `wrc info` shows, read with the checked HDF5 wrappers. Deliberately
-// lenient about extensions and strict about what SPEC §4.2 requires.
+// lenient about extensions and strict about what docs/reference/table-layout.md requires.
 
 #include <algorithm>
 #include <cmath>

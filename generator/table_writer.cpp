@@ -1,4 +1,4 @@
-// The HDF5 table (SPEC §4.2), written through the checked wrc::h5 wrappers.
+// The HDF5 table (docs/reference/table-layout.md), written through the checked wrc::h5 wrappers.
 
 #include <ctime>
 #include <fstream>

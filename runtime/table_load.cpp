@@ -1,4 +1,4 @@
-// Loading and validation of a table file (SPEC §4.2) into a runtime::Table.
+// Loading and validation of a table file (docs/reference/table-layout.md) into a runtime::Table.
 
 #include <algorithm>
 #include <cmath>

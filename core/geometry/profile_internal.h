@@ -1,6 +1,6 @@
 #pragma once
 /// @file profile_internal.h
-/// Helpers shared by the profile sources in core/geometry/ (not part of the public API).
+/// Functions shared by the profile sources in core/geometry/ (not part of the public API).
 
 #include <cstddef>
 #include <optional>

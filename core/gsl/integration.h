@@ -1,7 +1,7 @@
 #pragma once
 /// @file integration.h
-/// Adaptive quadrature with GSL's QUADPACK routines (QAGS, QAGP, QAWC) and a 2-D helper built
-/// from nested 1-D QAGS. Each call owns its workspace, so calls may nest (the 2-D helper does)
+/// Adaptive quadrature with GSL's QUADPACK routines (QAGS, QAGP, QAWC) and a 2-D routine built
+/// from nested 1-D QAGS. Each call owns its workspace, so calls may nest (the 2-D routine does)
 /// and run on different threads. GSL failures throw wrc::GslError (core/gsl/error.h); an
 /// exception thrown by the integrand is carried across GSL's C frames and rethrown unchanged.
 

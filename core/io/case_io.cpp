@@ -1,5 +1,6 @@
-// Case files (SPEC §2): TOML to wrc::Case, with every name, type and value checked so that a
-// typo or an impossible value is reported with file, line and key instead of being ignored.
+// Case files (docs/reference/case-files.md): TOML to wrc::Case, with every name, type and value
+// checked so that a typo or an impossible value is reported with file, line and key instead of
+// being ignored.
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -37,7 +38,8 @@ struct SectionSchema {
   std::vector<KeySchema> keys;
 };
 
-/// Every section and key of SPEC §2 and §2.1. Anything else in a file is a mistake.
+/// Every section and key of a case file (docs/reference/case-files.md). Anything else in a
+/// file is a mistake.
 const std::vector<SectionSchema>& CaseSchema() {
   constexpr Applies kBoth = Applies::kBoth;
   constexpr Applies kWR = Applies::kWheelRail;
@@ -500,7 +502,8 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   if (state.fz) RequireForce(section, "fz", *state.fz);
   state.roll = section.Number("roll", state.roll);
   state.yaw = section.Number("yaw", state.yaw);
-  state.velocity = section.Number("velocity", state.velocity);
+  // The speed sets the creepages and omega; no value is a sensible guess for every user.
+  state.velocity = section.RequiredNumber("velocity", "the forward velocity of the wheelset, mm/s");
   RequireMagnitudeAtMost(section, "velocity", state.velocity, kMaxVelocity, "mm/s, i.e. 1 km/s");
   state.vy = section.Number("vy", state.vy);
   state.vroll = section.Number("vroll", state.vroll);
@@ -509,6 +512,10 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   const std::optional<double> omega = section.OptionalNumber("omega");
   state.spin = section.OptionalNumber("spin");
   if (omega && state.spin) section.Fail("spin", "give either state.omega or state.spin, not both");
+  const bool rotation_on_axis =
+      options.axis_names.count("spin") + options.axis_names.count("omega") > 0;
+  // Without omega or spin (and no axis for them) the wheelset rolls freely: spin = 0.
+  if (!omega && !state.spin && !rotation_on_axis) state.spin = 0.0;
   if (omega) state.omega = *omega;
   if (state.spin) {
     RequireMagnitudeAtMost(section, "spin", *state.spin, kMaxCreepage,

@@ -1,5 +1,6 @@
-// Scene files (SPEC §4.1): a case plus [table]. The table is checked completely before any
-// point is solved, because a mistake found hours into `wrc generate` wastes the whole run.
+// Scene files (docs/reference/case-files.md, scenes): a case plus [table]. The table is checked
+// completely before any point is solved, because a mistake found hours into `wrc generate` wastes
+// the whole run.
 
 #include <algorithm>
 #include <cmath>
@@ -443,8 +444,9 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
   }
   const Section table(file, root, "table");
   if (!table.exists()) {
-    file.FailAt(toml::source_position{0, 0}, "[table]",
-                "missing: a scene file needs a [table] section with axes (SPEC §4.1)");
+    file.FailAt(
+        toml::source_position{0, 0}, "[table]",
+        "missing: a scene file needs a [table] section with axes (docs/reference/case-files.md)");
   }
 
   const std::vector<std::string> axis_names = ReadAxisNames(file, table);

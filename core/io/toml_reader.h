@@ -1,6 +1,6 @@
 #pragma once
 /// @file toml_reader.h
-/// Private helpers of the case and scene parsers: typed access to TOML values that turns every
+/// Private parts of the case and scene parsers: typed access to TOML values that turns every
 /// problem into an InputError "file:line: key.path = value: problem".
 
 #include <initializer_list>

@@ -1,10 +1,11 @@
 #pragma once
 /// @file case.h
-/// One contact problem as described by a case file (SPEC §2): one wheel on one rail, or a
-/// quadratic half-space problem (SPEC §2.1). Plain data; LoadCase() / ParseCase() fill it from
-/// TOML and validate every value, so code that receives a Case can rely on it.
+/// One contact problem as described by a case file (docs/reference/case-files.md): one wheel on one
+/// rail, or a quadratic half-space problem (docs/reference/case-files.md, half-space cases). Plain
+/// data; LoadCase() / ParseCase() fill it from TOML and validate every value, so code that receives
+/// a Case can rely on it.
 ///
-/// Member defaults are the defaults of SPEC §2 ("keys not listed take the defaults shown").
+/// Member defaults are the documented defaults of the keys (docs/reference/case-files.md).
 
 #include <filesystem>
 #include <memory>
@@ -21,8 +22,9 @@ class ProfileSpline;
 
 /// `problem.type`.
 enum class CaseType {
-  kWheelRail,  ///< "wheel-rail": profiles, track and wheelset (SPEC §2).
-  kHalfspace,  ///< "halfspace": h(x,y) = a1·x² + b1·y² − approach (SPEC §2.1).
+  kWheelRail,  ///< "wheel-rail": profiles, track and wheelset (docs/reference/case-files.md).
+  kHalfspace,  ///< "halfspace": h(x,y) = a1·x² + b1·y² − approach (docs/reference/case-files.md,
+               ///< half-space cases).
 };
 
 /// `wheelset.side`: which wheel of the wheelset is in contact.
@@ -114,8 +116,8 @@ struct GridSettings {
   double dx = 0.2;  ///< mm, rolling direction.
   double ds = 0.2;  ///< mm, along the (curved) lateral direction; wheel-rail only.
   double dy = 0.2;  ///< mm, lateral; half-space only.
-  /// Half-space only: the rectangle covered by cells (SPEC §2.1); when absent, the solver
-  /// chooses it around the Hertz ellipse.
+  /// Half-space only: the rectangle covered by cells (docs/reference/case-files.md, half-space
+  /// cases); when absent, the solver chooses it around the Hertz ellipse.
   std::optional<Interval> x;
   std::optional<Interval> y;
 };
@@ -141,19 +143,23 @@ struct HalfspaceGeometry {
   double b1 = 0.0;  ///< 1/mm, > 0.
 };
 
-/// `[state]` of a wheel-rail problem. Exactly one of z and fz holds a value.
+/// `[state]` of a wheel-rail problem. Exactly one of z and fz holds a value. In a file, velocity
+/// must be given; its member value (and the omega of free rolling on a 460 mm wheel that goes
+/// with it) only serves cases built in code.
 struct WheelsetState {
-  double y = 6.25;             ///< mm, lateral wheelset position.
-  std::optional<double> z;     ///< mm, prescribed vertical position (z = 0 nominal).
-  std::optional<double> fz;    ///< N, prescribed vertical force on the rail, > 0.
-  double roll = 0.0;           ///< rad.
-  double yaw = 0.024;          ///< rad.
-  double velocity = 2000.0;    ///< mm/s, forward.
-  double omega = -4.3481124;   ///< rad/s, pitch velocity (negative for forward rolling).
-  std::optional<double> spin;  ///< -, when given instead of omega; omega holds its value.
-  double vy = 0.0;             ///< mm/s.
-  double vroll = 0.0;          ///< rad/s.
-  double vyaw = 0.0;           ///< rad/s.
+  double y = 0.0;             ///< mm, lateral wheelset position.
+  std::optional<double> z;    ///< mm, prescribed vertical position (z = 0 nominal).
+  std::optional<double> fz;   ///< N, prescribed vertical force on the rail, > 0.
+  double roll = 0.0;          ///< rad.
+  double yaw = 0.0;           ///< rad.
+  double velocity = 2000.0;   ///< mm/s, forward.
+  double omega = -4.3481124;  ///< rad/s, pitch velocity (negative for forward rolling).
+  /// -, rotation relative to free rolling, when given instead of omega (0 when neither is
+  /// given); omega holds its value.
+  std::optional<double> spin;
+  double vy = 0.0;     ///< mm/s.
+  double vroll = 0.0;  ///< rad/s.
+  double vyaw = 0.0;   ///< rad/s.
 
   /// True when fz is prescribed and z is solved for.
   bool force_prescribed() const { return fz.has_value(); }
@@ -199,9 +205,9 @@ struct Case {
   std::string source_text;         ///< The original TOML text (tables store it verbatim).
 };
 
-/// Pitch velocity for a spin value (SPEC §4.1): omega = −(velocity / nominal_radius)·(1 + spin).
-/// spin is the rotation relative to free rolling at the nominal radius; 0.01 turns the wheel
-/// 1 % faster than free rolling.
+/// Pitch velocity for a spin value (docs/reference/case-files.md, scenes): omega = −(velocity /
+/// nominal_radius)·(1 + spin). spin is the rotation relative to free rolling at the nominal radius;
+/// 0.01 turns the wheel 1 % faster than free rolling.
 inline double OmegaFromSpin(double spin, double velocity, double nominal_radius) {
   return -(velocity / nominal_radius) * (1.0 + spin);
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// @file generator.h
-/// `wrc generate` (SPEC §4.2): solves a scene at every grid point and writes the HDF5 table.
+/// `wrc generate` (docs/reference/table-layout.md): solves a scene at every grid point and writes
+/// the HDF5 table.
 ///
 /// The sweep is split into *lines*: all points along the last axis for fixed other indices
 /// (cut into shorter segments when a table has few lines, see GenerateOptions::min_segments).
@@ -60,7 +61,7 @@ struct PointResult {
   std::string message;
 };
 
-/// The stored outputs of a solve, in scene.outputs order (SPEC §4.2):
+/// The stored outputs of a solve, in scene.outputs order (docs/reference/table-layout.md):
 ///  - fx fy fz mx my mz: force on the rail in the track frame, moments about the rail origin;
 ///  - fx_ws fy_ws fz_ws: the same force in the wheelset frame;
 ///  - n_patches; pmax: the largest peak pressure over the patches; z: the wheelset height;

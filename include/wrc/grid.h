@@ -36,7 +36,8 @@ struct Grid {
   void Validate() const;
 
   /// The grid of cells dx × dy covering [xmin, xmax] × [ymin, ymax], cell centres at
-  /// xmin + (i + ½)dx (SPEC §2.1). The cell count is rounded to the nearest integer.
+  /// xmin + (i + ½)dx (docs/reference/case-files.md, half-space cases). The cell count is rounded
+  /// to the nearest integer.
   static Grid Covering(double xmin, double xmax, double ymin, double ymax, double dx, double dy);
 };
 

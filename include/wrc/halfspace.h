@@ -1,8 +1,9 @@
 #pragma once
 /// @file halfspace.h
 /// Half-space problems with quadratic undeformed distance h = a1·x² + b1·y² − approach
-/// (SPEC §2.1), solved with CONTACT's module-3 conventions: forces on body 1, steady rolling in
-/// +x with the leading edge at x > 0, rigid slip w = [ξ − φ·y, η + φ·(x + δq/6)] with δq = dx.
+/// (docs/reference/case-files.md, half-space cases), solved with CONTACT's module-3 conventions:
+/// forces on body 1, steady rolling in +x with the leading edge at x > 0, rigid slip w = [ξ − φ·y,
+/// η + φ·(x + δq/6)] with δq = dx.
 
 #include <string>
 #include <vector>
@@ -14,7 +15,7 @@
 
 namespace wrc {
 
-/// Result of a half-space solve: totals (SPEC §3 `patches[0]`) and the fields.
+/// Result of a half-space solve: totals (docs/reference/json.md `patches[0]`) and the fields.
 struct HalfspaceResult {
   SolverStatus status = SolverStatus::kNotConverged;
   Grid grid;

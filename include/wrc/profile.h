@@ -3,9 +3,10 @@
 /// Wheel and rail profiles: readers for the file formats CONTACT accepts, the repairs CONTACT
 /// applies to measured data, and a smooth arc-length spline of the result.
 ///
-/// Conventions (as CONTACT's "Inputs regarding wheel and rail profiles", SPEC.md §1): lengths in
-/// mm; rail profiles in rail coordinates and wheel profiles in wheel coordinates, y lateral and
-/// positive towards the field side, z positive downwards. After ReadProfile the points run
+/// Conventions (as CONTACT's "Inputs regarding wheel and rail profiles",
+/// docs/reference/conventions.md): lengths in mm; rail profiles in rail coordinates and wheel
+/// profiles in wheel coordinates, y lateral and positive towards the field side, z positive
+/// downwards. After ReadProfile the points run
 ///  - for a rail:  from the track centre to the field side, y ascending overall;
 ///  - for a wheel: from the field side to the flange side, y descending overall;
 /// so that, walking along the points, the material is on the right-hand side (in the y–z
@@ -58,7 +59,7 @@ struct ProfileOptions {
   /// z is mirrored when the side faces found point the wrong way in majority; with no side face
   /// (flat or grooved profiles) or a tie, z is kept and a warning says so. This follows the user
   /// guide's description of CONTACT's heuristic ("based on wheel and rail side faces"); its exact
-  /// algorithm is not documented. It agrees with CONTACT on every file in shared/profiles whose
+  /// algorithm is not documented. It agrees with CONTACT on every measured profile file whose
   /// behaviour is known (Simpack files kept, MiniProf rails mirrored, grooves kept).
   MirrorZ mirror_z = MirrorZ::kAuto;
   /// Smoothing wavelength L_filt in mm (CONTACT's SMOOTH with ISMOOTH = 1); 0 = no smoothing,

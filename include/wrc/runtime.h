@@ -6,8 +6,8 @@
  * fx … mz sampled on a rectilinear grid of axes such as y, roll, yaw, spin. This library loads a
  * table into memory and interpolates it. It depends on HDF5 only.
  *
- * The functions of the interface contract keep their names; everything else is an extension,
- * listed in runtime/README.md.
+ * Reference: docs/reference/runtime.md (an overview) and runtime/README.md (every function,
+ * flag and error code, wheelsets, Python, linking).
  *
  * Error handling: functions returning int give 0 (or non-negative flags) on success and a
  * negative WRC_ERR_* code on failure; functions returning pointers give NULL on failure. The

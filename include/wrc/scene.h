@@ -1,7 +1,8 @@
 #pragma once
 /// @file scene.h
-/// A scene (SPEC §4.1): a wheel-rail case plus a `[table]` section that spans a grid of states.
-/// Each table axis varies one quantity; quantities not on an axis come from the case.
+/// A scene (docs/reference/case-files.md, scenes): a wheel-rail case plus a `[table]` section that
+/// spans a grid of states. Each table axis varies one quantity; quantities not on an axis come from
+/// the case.
 ///
 /// Axis values are given in one of three forms:
 ///  - `{from = a, to = b, step = h}`: a, a + h, a + 2h, ... up to b. b itself is included when
@@ -62,8 +63,9 @@ struct Scene {
   /// The case with every axis quantity set to the axis' first value, so that it is complete.
   /// base.source_text is the full scene text.
   Case base;
-  std::vector<SceneAxis> axes;       ///< In dimension order (`table.axes`).
-  std::vector<std::string> outputs;  ///< Output names (SPEC §4.2), in file order.
+  std::vector<SceneAxis> axes;  ///< In dimension order (`table.axes`).
+  /// Output names (docs/reference/case-files.md), in file order.
+  std::vector<std::string> outputs;
   /// Present when the scene asks the generator to place the nodes (`[table.refine]`).
   std::optional<RefineSettings> refine;
 
@@ -73,7 +75,7 @@ struct Scene {
   std::vector<std::size_t> Shape() const;
 };
 
-/// Allowed axis names (SPEC §4.1).
+/// Allowed axis names (docs/reference/case-files.md, scenes).
 /// `y_wheel` is the lateral position of the wheel at its contact, y − r0·roll (r0 the nominal
 /// radius): a wheelset roll of φ moves the wheel's running surface sideways by about r0·φ at
 /// the rail, so the tread-to-flange transition lies at nearly the same y_wheel for every roll,
@@ -81,7 +83,7 @@ struct Scene {
 inline constexpr std::string_view kSceneAxisNames[] = {
     "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vyaw", "mu", "y_wheel"};
 
-/// Allowed output names (SPEC §4.2). `z` requires a prescribed fz.
+/// Allowed output names (docs/reference/table-layout.md). `z` requires a prescribed fz.
 inline constexpr std::string_view kSceneOutputNames[] = {
     "fx",    "fy",    "fz",    "mx",        "my",        "mz",
     "fx_ws", "fy_ws", "fz_ws", "n_patches", "contact_y", "contact_angle",

@@ -10,7 +10,7 @@ enum class SolverStatus {
   kNotConverged,  ///< Hit the iteration limit; the last iterate is returned.
 };
 
-/// "ok", "no_contact" or "not_converged", as in SPEC §3.
+/// "ok", "no_contact" or "not_converged", as in docs/reference/json.md.
 const char* ToString(SolverStatus status);
 
 }  // namespace wrc

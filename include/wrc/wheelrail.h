@@ -1,8 +1,8 @@
 #pragma once
 /// @file wheelrail.h
-/// One wheel on one rail (SPEC §2, `type = "wheel-rail"`): contact search, contact patches with
-/// a planar or curved reference (paper §2.6 and §3), normal and tangential solution per patch,
-/// and the total forces on the rail (SPEC §3).
+/// One wheel on one rail (docs/reference/case-files.md, `type = "wheel-rail"`): contact search,
+/// contact patches with a planar or curved reference (paper §2.6 and §3), normal and tangential
+/// solution per patch, and the total forces on the rail (docs/reference/json.md).
 
 #include <Eigen/Dense>
 #include <limits>
@@ -79,7 +79,7 @@ struct WheelRailTimings {
   double total = 0.0;
 };
 
-/// Result of a wheel–rail solve (SPEC §3 JSON).
+/// Result of a wheel–rail solve (docs/reference/json.md).
 struct WheelRailResult {
   SolverStatus status = SolverStatus::kConverged;
   std::string message;
@@ -95,7 +95,8 @@ struct WheelRailResult {
   /// force onto the rail surface; track frame. Valid when `has_force_location`.
   Eigen::Vector3d force_location_T = Eigen::Vector3d::Zero();
   bool has_force_location = false;
-  double contact_y = 0.0;      ///< Rail profile y of force_location_T, mm (SPEC §4.2).
+  double contact_y =
+      0.0;  ///< Rail profile y of force_location_T, mm (docs/reference/table-layout.md).
   double contact_angle = 0.0;  ///< Rail inclination there, track frame, rad.
   /// Where the state is extreme but solved: what of the model's assumptions it strains (e.g. a
   /// patch too curved for the half-space influence coefficients). Empty for ordinary states.

@@ -37,13 +37,13 @@ TEST(HalfspaceReference, MatchesContact) {
     const HalfspaceResult r = SolveHalfspace(c);
     ASSERT_EQ(r.status, SolverStatus::kConverged);
     const double fn = ref["fn"].get<double>();
-    // Issue 2: fn and approach to 0.5 %, n_contact ±2 elements; CONTACT prints 4 digits.
+    // fn and approach to 0.5 %, n_contact ±2 elements; CONTACT prints 4 digits.
     EXPECT_NEAR(r.fn, fn, 0.005 * fn);
     EXPECT_NEAR(r.approach, ref["approach"].get<double>(), 0.005 * ref["approach"].get<double>());
     EXPECT_NEAR(r.n_contact, ref["n_contact"].get<int>(), 2);
     EXPECT_NEAR(r.pmax, ref["pmax"].get<double>(), 0.005 * ref["pmax"].get<double>());
     if (c.effects.tangential) {
-      // Issue 3: fx, fs, mn within 0.5 % of μ·fn (mn per mm of the contact size, here taken
+      // fx, fs, mn within 0.5 % of μ·fn (mn per mm of the contact size, here taken
       // as 1 mm: all cases have semi-axes of 2-6 mm, so this is stricter), n_slip ±3.
       const double bound = 0.005 * c.friction.mu[0] * fn;
       EXPECT_NEAR(r.fx, ref["fx"].get<double>(), bound);

@@ -1,4 +1,4 @@
-// Issue 3: at small creepage the half-space solver reproduces Kalker's linear theory of rolling
+// At small creepage the half-space solver reproduces Kalker's linear theory of rolling
 // contact, Fx = −G·c²·C11·ξ, Fy = −G·c²·C22·η − G·c³·C23·φ with c = √(ab) (rigid slip of paper
 // Eq. 15, w = [ξ − φ·y, η + φ·x]), within 3 % of Kalker's tabulated coefficients.
 

@@ -181,7 +181,7 @@ NormalSolution SolveCircle(double radius, double fn, int across, NormalSummary* 
   return sol;
 }
 
-// Issue 2: at ~40 elements across the contact diameter pmax and approach within 1 % of Hertz.
+// At ~40 elements across the contact diameter pmax and approach within 1 % of Hertz.
 TEST(NormalSolver, HertzCircleAtFortyElements) {
   NormalSummary summary;
   const NormalSolution sol = SolveCircle(460.0, 10000.0, 40, &summary);

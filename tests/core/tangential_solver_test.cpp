@@ -51,7 +51,7 @@ TangentialSolution Roll(const Strip& strip, double mu, double cksi, double ceta,
   return sol;
 }
 
-// Issue 3: at large creepage the whole contact slips, |F_t| = μ·F_n to 1e-6 relative, and the
+// At large creepage the whole contact slips, |F_t| = μ·F_n to 1e-6 relative, and the
 // force is opposite to the rigid slip (Eq. 12e with s ≈ w).
 TEST(TangentialSolver, FullSlipSaturatesOppositeToRigidSlip) {
   const Grid g = Grid::Covering(-4.0, 4.0, -4.0, 4.0, 0.25, 0.25);
@@ -107,7 +107,7 @@ TEST(TangentialSolver, CarterTwoDimensionalRolling) {
     double force = 0.0;
     for (int i = 0; i < g.nx; ++i) force += sol.px[g.index(i, mid)] * dx;
     const double carter = -mu * load * (1.0 - (1.0 - kappa) * (1.0 - kappa));
-    // Issue 3 asks for 1 % of the analytic force.
+    // The solver's promise is 1 % of the analytic force.
     EXPECT_NEAR(force, carter, 0.01 * std::fabs(carter)) << "kappa " << kappa;
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Helpers of the generator tests: scratch directories, a tiny scene, bit-exact table comparison
-// and running the `wrc` binary.
+// Shared parts of the generator tests: scratch directories, a tiny scene, bit-exact table
+// comparison and running the `wrc` binary.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -61,8 +61,10 @@ inline std::string TinyScene(const std::string& table, const std::string& state 
        << "[grid]\ndx = 1.0\nds = 1.0\n"
        << "[effects]\ntangential = " << (tangential ? "true" : "false") << "\n"
        << "[state]\n"
-       << state << "\n"
-       << "[table]\n"
+       << state
+       << "\n"
+       // Every case states its forward velocity; 2 m/s unless the test gives its own.
+       << (state.find("velocity") == std::string::npos ? "velocity = 2000.0\n" : "") << "[table]\n"
        << table << "\n";
   return text.str();
 }

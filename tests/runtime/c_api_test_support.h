@@ -1,4 +1,4 @@
-/* C-callable helpers for c_api_test.c, implemented in C++ (c_api_test_support.cpp) with the
+/* C-callable functions for c_api_test.c, implemented in C++ (c_api_test_support.cpp) with the
  * table writer of table_writer.h. Valid C99. */
 #ifndef WRC_TESTS_RUNTIME_C_API_TEST_SUPPORT_H_
 #define WRC_TESTS_RUNTIME_C_API_TEST_SUPPORT_H_

@@ -1,8 +1,8 @@
 #pragma once
 /// @file table_writer.h
-/// Test helper (header-only, so benchmarks and the C test's support code can include it too):
-/// writes a table file laid out as SPEC §4.2 prescribes, from axes and a function, with the
-/// wrc::h5 wrapper. Also a scratch-file helper that deletes the file afterwards.
+/// Test support (header-only, so benchmarks and the C test's support code can include it too):
+/// writes a table file laid out as docs/reference/table-layout.md prescribes, from axes and a
+/// function, with the wrc::h5 wrapper. Also a scratch file that deletes itself afterwards.
 
 #include <atomic>
 #include <cstdint>

@@ -67,11 +67,14 @@ class CliResults : public ::testing::Test {
                               "\n" + line);
   }
 
-  // A wheel-rail case on the Manchester benchmark profiles, with a rail profile of choice.
+  // A wheel-rail case on the Manchester benchmark profiles, with a rail profile of choice;
+  // 2 m/s unless `state` gives its own velocity.
   static std::string WheelRail(const std::string& state, const fs::path& rail) {
+    const std::string velocity =
+        state.find("velocity") == std::string::npos ? "velocity = 2000.0\n" : "";
     return "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \"" + rail.string() +
            "\"\n[wheel]\nprofile = \"" + (kProfiles / "MBench_S1002_v3.prw").string() +
-           "\"\n[grid]\ndx = 1.0\nds = 1.0\n[state]\nfz = 10000.0\n" + state + "\n";
+           "\"\n[grid]\ndx = 1.0\nds = 1.0\n[state]\nfz = 10000.0\n" + velocity + state + "\n";
   }
 
   fs::path dir_;

@@ -1,6 +1,6 @@
-// The `wrc` command line as users run it (SPEC §3): the real binary, started through the shell,
-// on reference cases and on broken input. Checks results, the files of --out, exit codes and
-// that every error message names its problem.
+// The `wrc` command line as users run it (docs/reference/cli.md): the real binary, started through
+// the shell, on reference cases and on broken input. Checks results, the files of --out, exit codes
+// and that every error message names its problem.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -48,7 +48,8 @@ std::string Quoted(const std::string& word) {
   return quoted + "'";
 }
 
-// A valid half-space case (SPEC §2.1) that the bad-input tests break one line at a time.
+// A valid half-space case (docs/reference/case-files.md, half-space cases) that the bad-input tests
+// break one line at a time.
 constexpr const char* kValidCase = R"([problem]
 type = "halfspace"
 [geometry]
@@ -230,7 +231,7 @@ TEST_F(WrcCli, NanValueIsBadInput) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("case.toml:" + std::to_string(index + 1)), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("state.fn = nan"), std::string::npos) << run.err;
-  // With --json, stdout still holds one JSON object, with status "error" (SPEC §3).
+  // With --json, stdout still holds one JSON object, with status "error" (docs/reference/cli.md).
   const json result = json::parse(run.out);
   EXPECT_EQ(result["status"], "error");
   EXPECT_NE(result["message"].get<std::string>().find("state.fn"), std::string::npos);

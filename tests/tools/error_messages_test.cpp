@@ -1,6 +1,6 @@
-// Bad input to `wrc solve` (SPEC §3): each mistake a user can make in a wheel-rail case or its
-// profiles gives exit code 2 and one message on stderr that names the file, the line or key and
-// the offending value; a wheel that does not touch the rail is no error (status no_contact,
+// Bad input to `wrc solve` (docs/reference/cli.md): each mistake a user can make in a wheel-rail
+// case or its profiles gives exit code 2 and one message on stderr that names the file, the line or
+// key and the offending value; a wheel that does not touch the rail is no error (status no_contact,
 // exit 0). Runs the real binary, like cli_test.cpp.
 
 #include <gtest/gtest.h>
@@ -32,7 +32,7 @@ std::vector<std::string> ValidWheelRailCaseLines() {
       "[grid]",    "dx = 0.5",
       "ds = 0.5",  "[state]",
       "y = 0.0",   "z = 0.3",
-      "yaw = 0.0",
+      "yaw = 0.0", "velocity = 2000.0",
   };
 }
 
@@ -227,7 +227,7 @@ TEST_F(ErrorMessages, NanInState) {
   const fs::path case_file = WriteCaseWith("y = 0.0", "y = nan", &line);
   const WrcRun run = Solve(case_file, /*as_json=*/true);
   ExpectBadInput(run, {"case.toml:" + std::to_string(line), "state.y = nan", "finite"});
-  // With --json, stdout still holds one object with status "error" (SPEC §3).
+  // With --json, stdout still holds one object with status "error" (docs/reference/cli.md).
   EXPECT_EQ(nlohmann::json::parse(run.out)["status"], "error");
 }
 

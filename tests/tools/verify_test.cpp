@@ -1,5 +1,5 @@
 // `wrc verify` on small tables: errors shrink when the table is refined, JSON per
-// SPEC §5, the tolerance gate.
+// docs/reference/cli.md, wrc verify, the tolerance gate.
 
 #include <gtest/gtest.h>
 

@@ -5,20 +5,20 @@
 
 namespace wrc::cli {
 
-/// Exit codes (SPEC §3): 0 ok or no contact, 2 bad input, 3 not converged.
+/// Exit codes (docs/reference/cli.md): 0 ok or no contact, 2 bad input, 3 not converged.
 enum ExitCode : int { kExitOk = 0, kExitGateFailed = 1, kExitBadInput = 2, kExitNotConverged = 3 };
 
 /// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.
 void AddSolveCommand(CLI::App& app, int* exit_code);
 
-/// Registers `wrc generate SCENE.toml -o TABLE.h5` (SPEC §4.2): exit 0 when the table was
-/// written (failed points are in /status), 2 for bad input, 130 when interrupted.
+/// Registers `wrc generate SCENE.toml -o TABLE.h5` (docs/reference/table-layout.md): exit 0 when
+/// the table was written (failed points are in /status), 2 for bad input, 130 when interrupted.
 void AddGenerateCommand(CLI::App& app, int* exit_code);
 
 /// Registers `wrc info TABLE.h5 [--json]`: axes, outputs, status counts, provenance.
 void AddInfoCommand(CLI::App& app, int* exit_code);
 
-/// Registers `wrc verify` (SPEC §5).
+/// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 
 /// Adds `solver` and `tables` (accuracy against cost) to `wrc study`.

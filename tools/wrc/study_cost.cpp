@@ -1,10 +1,12 @@
 // `wrc study solver` and `wrc study tables`: what accuracy costs in time.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -16,7 +18,9 @@
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/halfspace.h"
 #include "wrc/scene.h"
+#include "wrc/solver_status.h"
 #include "wrc/wheelrail.h"
 
 namespace wrc::cli {
@@ -30,82 +34,120 @@ double Seconds(std::chrono::steady_clock::time_point t0) {
 
 int Shell(const std::string& command) { return std::system(command.c_str()); }
 
-// Solver accuracy against cost: the Manchester states of tables/mbench.toml's y range (curved,
-// fz = 10 kN) at several element sizes; errors against the finest grid.
-int StudySolver(const fs::path& out, const fs::path& source_dir, const std::string& exe) {
-  fs::create_directories(out);
-  const std::vector<double> sizes = {1.0, 0.5, 0.25, 0.2, 0.1};
-  const std::vector<double> ys = {0.0, 2.0, 4.0, 6.0, 8.0};
-  const fs::path profiles = fs::absolute(source_dir / "tables" / "profiles");
-  struct Row {
-    double size, y, seconds, fx, fy, fz, z;
-  };
-  std::vector<Row> rows;
-  for (double y : ys) {
-    for (double d : sizes) {
-      std::ostringstream t;
-      t.precision(12);
-      t << "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \""
-        << (profiles / "MBench_UIC60_v3.prr").string() << "\"\n[wheel]\nprofile = \""
-        << (profiles / "MBench_S1002_v3.prw").string() << "\"\n[grid]\ndx = " << d << "\nds = " << d
-        << "\n[method]\nreference = \"curved\"\n[state]\ny = " << y
-        << "\nfz = 10000.0\nyaw = 0.0\nspin = 0.0\n";
-      const Case c = ParseCase(t.str(), out, "solver_study");
-      // Best of two: the first run also warms caches (influence tables are per element size).
-      double best = 1e300;
-      WheelRailResult r;
-      for (int rep = 0; rep < 2; ++rep) {
-        const auto t0 = std::chrono::steady_clock::now();
-        r = SolveWheelRail(c);
-        best = std::min(best, Seconds(t0));
-      }
-      rows.push_back({d, y, best, r.force_T(0), r.force_T(1), r.force_T(2), r.z});
-      std::cerr << "solver study: y " << y << " dx " << d << ": " << best << " s\n";
-    }
+// ---- solver: accuracy against element size and time ------------------------------------------
+
+// What the solver study compares between element sizes: the total force on the rail (on body 1
+// for half-space cases) and the wheelset height (the approach for half-space cases).
+struct SolverRow {
+  std::string name;
+  double size = 0.0, seconds = 0.0, fx = 0.0, fy = 0.0, fz = 0.0, z = 0.0;
+  std::string status;
+};
+
+// The case with elements of `size` mm in both directions.
+Case WithElementSize(Case c, double size) {
+  c.grid.dx = size;
+  if (c.type == CaseType::kWheelRail) {
+    c.grid.ds = size;
+  } else {
+    c.grid.dy = size;
   }
+  return c;
+}
+
+// One solve of `c` (best of two: the first run also warms the per-size influence caches).
+SolverRow SolveTimed(const Case& c) {
+  SolverRow row;
+  double best = 1e300;
+  for (int rep = 0; rep < 2; ++rep) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (c.type == CaseType::kWheelRail) {
+      const WheelRailResult r = SolveWheelRail(c);
+      row = {"", 0.0, 0.0, r.force_T(0), r.force_T(1), r.force_T(2), r.z, ToString(r.status)};
+    } else {
+      const HalfspaceResult r = SolveHalfspace(c);
+      row = {"", 0.0, 0.0, r.fx, r.fy, r.fn, r.approach, ToString(r.status)};
+    }
+    best = std::min(best, Seconds(t0));
+  }
+  row.seconds = best;
+  return row;
+}
+
+// Writes the gnuplot script and runs it; a missing gnuplot costs the picture, not the data.
+void RunGnuplot(const fs::path& dir, const std::string& script_name, const std::string& script,
+                const std::string& study) {
+  std::ofstream(dir / script_name) << script;
+  if (Shell("cd '" + dir.string() + "' && gnuplot '" + script_name + "'") != 0) {
+    std::cerr << "wrc study " << study << ": gnuplot failed (is gnuplot installed?); the data is "
+              << "in " << dir.string() << '\n';
+  }
+}
+
+void WriteSolverReport(const fs::path& out, const std::vector<SolverRow>& rows,
+                       const std::vector<double>& sizes) {
   std::ofstream csv(out / "solver.csv");
-  csv << "element_mm,y_mm,seconds,fx,fy,fz,z,err_fx_rel_load,err_fy_rel_load,err_z_um\n";
+  csv << "case,element_mm,seconds,status,fx,fy,fz,z,err_fx_rel_load,err_fy_rel_load,err_z_um\n";
   csv.precision(8);
-  std::ofstream summary(out / "solver.md");
-  summary
-      << "| element size (mm) | mean s per solve | max |Δfx|/fz | max |Δfy|/fz | max |Δz| (µm) |\n"
-      << "|---|---|---|---|---|\n";
-  for (double d : sizes) {
-    double time = 0.0, efx = 0.0, efy = 0.0, ez = 0.0;
-    for (double y : ys) {
-      const Row* row = nullptr;
-      const Row* fine = nullptr;
-      for (const Row& r : rows) {
-        if (r.y == y && r.size == d) row = &r;
-        if (r.y == y && r.size == sizes.back()) fine = &r;
-      }
-      const double a = std::fabs(row->fx - fine->fx) / 1e4, b = std::fabs(row->fy - fine->fy) / 1e4;
-      const double c = 1e3 * std::fabs(row->z - fine->z);
-      csv << d << ',' << y << ',' << row->seconds << ',' << row->fx << ',' << row->fy << ','
-          << row->fz << ',' << row->z << ',' << a << ',' << b << ',' << c << '\n';
-      time += row->seconds / ys.size();
-      efx = std::max(efx, a);
-      efy = std::max(efy, b);
-      ez = std::max(ez, c);
+  std::ofstream md(out / "solver.md");
+  md << "# Solver accuracy against cost\n\nEvery case solved with square elements of each size "
+        "(best time of two solves); errors against the finest size, forces as a fraction of "
+        "that solve's vertical (normal) force, z (the approach for half-space cases) in µm.\n\n"
+     << "| case | element (mm) | s per solve | status | abs Δfx / fz | abs Δfy / fz | abs Δz (µm) "
+        "|\n"
+     << "|---|---|---|---|---|---|---|\n";
+  const double finest = sizes.back();
+  for (const SolverRow& r : rows) {
+    const SolverRow* fine = nullptr;
+    for (const SolverRow& f : rows) {
+      if (f.name == r.name && f.size == finest) fine = &f;
     }
-    char line[200];
-    std::snprintf(line, sizeof line, "| %.2f | %.3f | %.2e | %.2e | %.2f |\n", d, time, efx, efy,
-                  ez);
-    summary << line;
+    const double load = std::fabs(fine->fz) > 0.0 ? std::fabs(fine->fz) : 1.0;
+    const double efx = std::fabs(r.fx - fine->fx) / load, efy = std::fabs(r.fy - fine->fy) / load;
+    const double ez = 1e3 * std::fabs(r.z - fine->z);
+    csv << '"' << r.name << "\"," << r.size << ',' << r.seconds << ',' << r.status << ',' << r.fx
+        << ',' << r.fy << ',' << r.fz << ',' << r.z << ',' << efx << ',' << efy << ',' << ez
+        << '\n';
+    char line[300];
+    std::snprintf(line, sizeof line, "| %s | %.3g | %.4f | %s | %.2e | %.2e | %.3f |\n",
+                  r.name.c_str(), r.size, r.seconds, r.status.c_str(), efx, efy, ez);
+    md << line;
   }
+  md << "\nData: `solver.csv`; picture: `solver.png` (error of fy against time per solve).\n";
   csv.close();
-  std::ofstream gp(out / "solver.gp");
-  gp << "set terminal pngcairo size 900,600 font ',10'\nset output 'solver.png'\n"
-     << "set datafile separator ','\nset logscale xy\nset grid\n"
-     << "set xlabel 'time per solve, s'\nset ylabel 'error of fy against dx = 0.1 mm, fraction of "
-        "fz'\n"
-     << "set title 'Solver accuracy against cost: Manchester S1002/UIC60, curved, fz = 10 kN'\n"
-     << "plot 'solver.csv' using 3:($9>0?$9:1/0):(sprintf('%.2g', $1)) with labels offset 1,0.5 "
-        "notitle, "
-     << "'' using 3:($9>0?$9:1/0) with points pt 7 title 'one case (label: element size, mm)'\n";
-  gp.close();
-  (void)exe;
-  Shell("cd '" + out.string() + "' && gnuplot solver.gp");
+  RunGnuplot(out, "solver.gp",
+             "set terminal pngcairo noenhanced size 900,600 font ',10'\nset output 'solver.png'\n"
+             "set datafile separator ','\nset key autotitle columnhead\nset logscale xy\n"
+             "set grid\nset xlabel 'time per solve, s'\n"
+             "set ylabel 'error of fy against the finest elements, fraction of fz'\n"
+             "set title 'Solver accuracy against cost'\n"
+             "plot 'solver.csv' using 3:($10>0?$10:1/0):(sprintf('%.2g', $2)) with labels "
+             "offset 1,0.5 notitle, '' using 3:($10>0?$10:1/0) with points pt 7 title 'one solve "
+             "(label: element size, "
+             "mm)'\n",
+             "solver");
+}
+
+// Solver accuracy against cost: each case at each element size, errors against the finest.
+int StudySolver(const std::vector<std::string>& case_paths, std::vector<double> sizes,
+                const fs::path& out) {
+  std::sort(sizes.begin(), sizes.end(), std::greater<double>());
+  std::vector<Case> cases;
+  for (const std::string& path : case_paths) cases.push_back(LoadCase(path));  // all read first
+  fs::create_directories(out);
+  std::vector<SolverRow> rows;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    for (const double size : sizes) {
+      SolverRow row = SolveTimed(WithElementSize(cases[k], size));
+      row.name = fs::path(case_paths[k]).filename().string();
+      row.size = size;
+      std::cerr << "solver study: " << row.name << " at " << size << " mm: " << row.seconds
+                << " s, " << row.status << '\n';
+      rows.push_back(row);
+    }
+  }
+  WriteSolverReport(out, rows, sizes);
+  std::cerr << "solver study: report in " << (out / "solver.md").string() << '\n';
   return kExitOk;
 }
 
@@ -188,8 +230,8 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
          "force_max_cubic,z_p95_cubic_mm,lookup_ns_cubic,axes\n";
   csv.precision(6);
   std::ofstream md(out / "tables.md");
-  md << "Tables of `" << scene_path.filename().string() << "`, " << samples
-     << " uniform random samples (seed " << seed
+  md << "# Table accuracy against size and time\n\nTables of `" << scene_path.filename().string()
+     << "`, " << samples << " uniform random samples (seed " << seed
      << ") re-solved exactly. Force errors: the largest over the force outputs, as a fraction "
         "of the local wheel load.\n\n"
      << "| table | points | generate (s) | file (MB) | p95 lin | rms lin | max lin | p95 cub | "
@@ -224,7 +266,7 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
       }
     }
   }
-  std::ofstream gp(out / "tables.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size 1000,650 font ',10'\nset output 'tables.png'\n"
      << "set logscale xy\nset grid\nset key top right\nset offsets graph 0.1, graph 0.1, 0, 0\n"
      << "set xlabel 'table points'\nset ylabel 'p95 force error, % of the local wheel load'\n"
@@ -236,10 +278,7 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
         "'uniform, cubic', 'tables_refined.dat' using 1:2 with linespoints pt 7 lc rgb '#2166ac' "
         "title 'refined, multilinear', '' using 1:3 with linespoints pt 6 lc rgb '#67a9cf' title "
         "'refined, cubic', 1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
-  gp.close();
-  if (Shell("cd '" + out.string() + "' && gnuplot tables.gp") != 0) {
-    std::cerr << "wrc study tables: gnuplot failed (is gnuplot installed?)\n";
-  }
+  RunGnuplot(out, "tables.gp", gp.str(), "tables");
 }
 
 // One table of the study: generated, timed and verified; *axes receives its nodes.
@@ -293,14 +332,27 @@ int StudyTables(const fs::path& scene_path, const fs::path& out, const std::vect
 }  // namespace
 
 void AddCostStudies(CLI::App& study, int* exit_code) {
-  auto out = std::make_shared<std::string>("docs/accuracy-cost");
-  auto source = std::make_shared<std::string>(".");
-  auto* solver = study.add_subcommand("solver", "Solver accuracy against time over element sizes");
-  solver->add_option("--out", *out, "Output directory");
-  solver->add_option("--source", *source, "The wrc checkout (for tables/profiles)");
+  auto* solver = study.add_subcommand(
+      "solver", "Solver accuracy against time: the given cases at several element sizes");
+  auto cases = std::make_shared<std::vector<std::string>>();
+  auto sizes = std::make_shared<std::vector<double>>(std::vector<double>{1.0, 0.5, 0.25, 0.2, 0.1});
+  auto solver_out = std::make_shared<std::string>("study-solver");
+  solver->add_option("CASE", *cases, "Case files (wheel-rail or half-space)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  solver
+      ->add_option("--sizes", *sizes,
+                   "Element sizes dx = ds (dy), mm; the finest is the "
+                   "reference")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  solver->add_option("--out", *solver_out, "Output directory (solver.csv, .png, .md)")
+      ->capture_default_str();
   solver->callback([=]() {
     try {
-      *exit_code = StudySolver(*out, *source, "");
+      if (sizes->size() < 2) throw InputError("--sizes: give at least two element sizes");
+      *exit_code = StudySolver(*cases, *sizes, *solver_out);
     } catch (const std::exception& e) {
       std::cerr << "wrc study solver: error: " << e.what() << '\n';
       *exit_code = kExitBadInput;
@@ -315,7 +367,8 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
   auto threads = std::make_shared<int>(0);
   auto tables_out = std::make_shared<std::string>("study-tables");
   tables->add_option("SCENE", *scene, "Scene file (any; its axes give the ranges)")->required();
-  tables->add_option("--out", *tables_out, "Output directory")->capture_default_str();
+  tables->add_option("--out", *tables_out, "Output directory (tables.csv, .png, .md, the tables)")
+      ->capture_default_str();
   tables->add_option("--targets", *targets, "Refinement targets, fractions of the local wheel load")
       ->delimiter(',')
       ->capture_default_str();
@@ -323,7 +376,7 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   tables->add_option("--seed", *seed, "Seed of the sample points")->capture_default_str();
-  tables->add_option("--threads", *threads, "Worker threads (default: all cores)");
+  tables->add_option("--threads", *threads, "Worker threads; 0: all cores")->capture_default_str();
   tables->callback([=]() {
     try {
       *exit_code = StudyTables(*scene, *tables_out, *targets, *samples, *seed, *threads);

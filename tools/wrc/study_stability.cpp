@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -25,6 +26,13 @@ namespace wrc::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A number as a person writes it (0.25, 1e+05), for the summary.
+std::string FormatSize(double v) {
+  std::ostringstream t;
+  t << v;
+  return t.str();
+}
 
 struct Sweep {
   std::string name;       // file stem
@@ -127,12 +135,15 @@ std::string HeavyHaulMethod(const std::string& method) {
   return m.replace(m.find(key), key.size(), "combine_distance = 30.0");
 }
 
-Sample SolveOne(const std::string& text, double parameter) {
+// How a job builds its case: from text (the built-in suite) or by changing a loaded case.
+using CaseMaker = std::function<Case()>;
+
+Sample SolveOne(const CaseMaker& make_case, double parameter) {
   Sample s;
   s.parameter = parameter;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const Case c = ParseCase(text, fs::current_path(), "stability");
+    const Case c = make_case();
     const WheelRailResult r = SolveWheelRail(c);
     s.status = ToString(r.status);
     s.message = r.message;
@@ -155,7 +166,9 @@ Sample SolveOne(const std::string& text, double parameter) {
   return s;
 }
 
-std::vector<Sample> RunAll(const std::vector<std::pair<std::string, double>>& jobs, int threads) {
+using Job = std::pair<CaseMaker, double>;
+
+std::vector<Sample> RunAll(const std::vector<Job>& jobs, int threads) {
   std::vector<Sample> out(jobs.size());
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
@@ -183,12 +196,19 @@ double LargestJump(const std::vector<Sample>& s, double Sample::*field) {
   return worst;
 }
 
+// The text with gnuplot's enhanced-text subscript marks escaped (file names hold underscores).
+std::string LiteralUnderscores(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+  return escaped;
+}
+
 void Plot(const fs::path& dir, const Sweep& sweep, const std::vector<std::string>& methods) {
   const fs::path script = dir / (sweep.name + ".gp");
   std::ofstream gp(script);
   gp << "set terminal pngcairo size 1000,700 font ',10'\nset output '" << sweep.name
-     << ".png'\nset datafile separator ','\nset multiplot layout 2,1 title '" << sweep.title
-     << "'\nset grid\nset key outside right\n"
+     << ".png'\nset datafile separator ','\nset multiplot layout 2,1 title '"
+     << LiteralUnderscores(sweep.title) << "'\nset grid\nset key outside right\n"
      << (sweep.log_axis ? "set logscale x\n" : "") << "set xlabel '" << sweep.parameter
      << "'\nset ylabel 'F_y / F_z (L/V), -'\nplot ";
   for (std::size_t m = 0; m < methods.size(); ++m) {
@@ -210,7 +230,165 @@ void Plot(const fs::path& dir, const Sweep& sweep, const std::vector<std::string
   }
 }
 
-}  // namespace
+// What the summary's table holds; `how` says how the study was run.
+void WriteSummaryHeader(std::ostream& summary, const std::string& how) {
+  summary << "# Stability of the solver\n\n"
+          << how << "\n\n"
+          << "Methods: planar = weighted centre, weighted angle, quadratic weights;"
+          << " planar-icp = initial contact point, sampled angle; curved = the curved reference"
+          << " surface.\n\n"
+          << "Jump ratio: the largest deviation of one step's change in fz (z sweeps) or fy"
+          << " (other sweeps) from its neighbours', at half the step divided by at the full"
+          << " step; about 0.25 for a smooth curve, 0.5 for a kink, 1 for a jump.\n\n"
+          << "| sweep | method | points | ok | no contact | not converged | error | max normal it."
+          << " | max tang. it. | max fz it. | jump ratio | s per solve |\n"
+          << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+}
+
+// The sweep's values, and with check_continuity also the values at half the step.
+std::vector<double> HalfStepValues(const Sweep& sweep) {
+  std::vector<double> half;
+  for (std::size_t k = 0; k + 1 < sweep.values.size(); ++k) {
+    half.push_back(sweep.values[k]);
+    half.push_back(0.5 * (sweep.values[k] + sweep.values[k + 1]));
+  }
+  half.push_back(sweep.values.back());
+  return half;
+}
+
+// Solves one sweep with every method, writes its CSV, summary rows and picture; returns the
+// number of solves that did not converge or failed.
+int RunSweep(const Sweep& sweep, const std::vector<std::string>& methods,
+             const std::function<CaseMaker(const std::string&, double)>& make, int threads,
+             const fs::path& out_dir, std::ostream& summary) {
+  std::vector<Job> jobs;
+  for (const std::string& m : methods) {
+    for (double v : sweep.values) jobs.push_back({make(m, v), v});
+  }
+  const std::vector<double> half =
+      sweep.check_continuity ? HalfStepValues(sweep) : std::vector<double>{};
+  for (const std::string& m : methods) {
+    for (double v : half) jobs.push_back({make(m, v), v});
+  }
+  std::cerr << "stability: " << sweep.name << " (" << jobs.size() << " solves)\n";
+  const std::vector<Sample> results = RunAll(jobs, threads);
+  std::ofstream csv(out_dir / (sweep.name + ".csv"));
+  csv << "method_index,method,parameter,status,fx,fy,fz,z,contact_y,n_patches,normal_it,"
+         "tangential_it,fz_it,seconds,message\n";
+  csv.precision(10);
+  const std::size_t n = sweep.values.size();
+  int failures = 0;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    std::vector<Sample> full(results.begin() + m * n, results.begin() + (m + 1) * n);
+    int counts[4] = {0, 0, 0, 0};
+    int max_n = 0, max_t = 0, max_f = 0;
+    double seconds = 0.0;
+    for (const Sample& s : full) {
+      csv << m << ',' << methods[m] << ',' << s.parameter << ',' << s.status << ',' << s.fx << ','
+          << s.fy << ',' << s.fz << ',' << s.z << ',' << s.contact_y << ',' << s.n_patches << ','
+          << s.normal_iterations << ',' << s.tangential_iterations << ',' << s.fz_iterations << ','
+          << s.seconds << ",\"" << s.message << "\"\n";
+      counts[s.status == "ok"              ? 0
+             : s.status == "no_contact"    ? 1
+             : s.status == "not_converged" ? 2
+                                           : 3]++;
+      const bool finite = std::isfinite(s.fx) && std::isfinite(s.fy) && std::isfinite(s.fz);
+      if (s.status == "ok" && !finite) ++counts[3];
+      max_n = std::max(max_n, s.normal_iterations);
+      max_t = std::max(max_t, s.tangential_iterations);
+      max_f = std::max(max_f, s.fz_iterations);
+      seconds += s.seconds;
+    }
+    failures += counts[2] + counts[3];
+    std::string ratio = "–";
+    if (sweep.check_continuity) {
+      const std::size_t base = methods.size() * n + m * half.size();
+      std::vector<Sample> fine(results.begin() + base, results.begin() + base + half.size());
+      double Sample::*field =
+          sweep.parameter.rfind("wheelset z", 0) == 0 ? &Sample::fz : &Sample::fy;
+      const double a = LargestJump(full, field), b = LargestJump(fine, field);
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.2f", a > 0.0 ? b / a : 0.0);
+      ratio = buf;
+    }
+    char time_buf[32];
+    std::snprintf(time_buf, sizeof time_buf, "%.3f", seconds / full.size());
+    summary << "| " << sweep.name << " | " << methods[m] << " | " << full.size() << " | "
+            << counts[0] << " | " << counts[1] << " | " << counts[2] << " | " << counts[3] << " | "
+            << max_n << " | " << max_t << " | " << max_f << " | " << ratio << " | " << time_buf
+            << " |\n";
+  }
+  csv.close();
+  Plot(out_dir, sweep, methods);
+  return failures;
+}
+
+void WritePlotLinks(std::ostream& summary, const std::vector<Sweep>& sweeps) {
+  summary << "\nData: one CSV per sweep. Plots: ";
+  for (const Sweep& s : sweeps) summary << "[" << s.name << "](" << s.name << ".png) ";
+  summary << "\n";
+}
+
+// `method.*` of each method name of the study; the case's combine_distance is kept.
+void ApplyMethod(const std::string& name, Method* method) {
+  method->reference = name == "curved" ? ReferenceSurface::kCurved : ReferenceSurface::kPlanar;
+  if (name == "planar-icp") {
+    method->position = ReferencePosition::kInitial;
+    method->angle = ReferenceAngle::kSampled;
+  } else {
+    method->position = ReferencePosition::kWeighted;
+    method->angle = ReferenceAngle::kWeighted;
+    method->weights = ReferenceWeights::kQuadratic;
+  }
+}
+
+// Quantities a user's case can be swept over, with their units.
+const std::map<std::string, std::string>& SweepableQuantities() {
+  static const std::map<std::string, std::string> q = {
+      {"y", "mm"},    {"z", "mm"},   {"fz", "N"},        {"roll", "rad"},
+      {"yaw", "rad"}, {"spin", "-"}, {"omega", "rad/s"}, {"mu", "-"}};
+  return q;
+}
+
+// The case with one swept quantity set, as a table axis would set it.
+void SetQuantity(const std::string& name, double value, Case* c) {
+  WheelsetState& s = c->state;
+  if (name == "y") s.y = value;
+  if (name == "roll") s.roll = value;
+  if (name == "yaw") s.yaw = value;
+  if (name == "z") {
+    s.z = value;
+    s.fz.reset();
+  }
+  if (name == "fz") {
+    s.fz = value;
+    s.z.reset();
+  }
+  if (name == "spin") {
+    s.spin = value;
+    s.omega = OmegaFromSpin(value, s.velocity, c->wheelset.nominal_radius);
+  }
+  if (name == "omega") {
+    s.omega = value;
+    s.spin.reset();
+  }
+  if (name == "mu") c->friction = Friction::Constant(value);
+}
+
+// The profile files a built-in sweep reads (its name's prefix names its pair).
+std::vector<std::string> SweepProfiles(const std::string& sweep) {
+  if (sweep.rfind("heavy_haul", 0) == 0) return {"site_b_hr.prr", "worn_high_mileage.prw"};
+  if (sweep.rfind("groove", 0) == 0) return {"groove_r1002.prr", "circ_r10.prw"};
+  return {"MBench_UIC60_v3.prr", "MBench_S1002_v3.prw"};
+}
+
+// The first profile of the sweep missing from `profiles`; empty when all are there.
+std::string MissingProfile(const std::string& sweep, const fs::path& profiles) {
+  for (const std::string& name : SweepProfiles(sweep)) {
+    if (!fs::exists(profiles / name)) return name;
+  }
+  return {};
+}
 
 int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool quick, int threads) {
   fs::create_directories(out_dir);
@@ -257,115 +435,142 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
   };
 
   std::ofstream summary(out_dir / "README.md");
-  summary << "# Stability of the solver on hard cases\n\n"
-          << "Generated by `wrc study stability" << (quick ? " --quick" : "") << " --out "
-          << out_dir.string() << " --profiles " << profiles.string() << "`. "
-          << "Methods: planar = weighted centre, weighted angle, quadratic weights (wgt-wgt-2);"
-          << " planar-icp = initial contact point, sampled angle; curved = the curved reference"
-          << " surface. Grid dx = ds = " << dx << " mm (heavy haul 0.4 mm, groove 0.2 × 0.25 mm)."
-          << " Combine distance 6 mm (heavy haul 30 mm, the paper's greedy combination).\n\n"
-          << "Jump ratio: the largest deviation of one step's change in fz (z sweeps) or fy"
-          << " (other sweeps) from its neighbours', at half the step divided by at the full"
-          << " step; about 0.25 for a smooth curve, 0.5 for a kink, 1 for a jump.\n\n"
-          << "| sweep | method | points | ok | no contact | not converged | error | max normal it."
-          << " | max tang. it. | max fz it. | jump ratio | s per solve |\n"
-          << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  WriteSummaryHeader(summary, "The built-in hard cases, generated by `wrc study stability" +
+                                  std::string(quick ? " --quick" : "") +
+                                  " --profiles DIR`. Grid dx = ds = " + FormatSize(dx) +
+                                  " mm (heavy haul 0.4 mm, groove 0.2 × 0.25 mm); combine "
+                                  "distance 6 mm (heavy haul 30 mm).");
   int failures = 0;
+  std::vector<Sweep> done;
+  std::string skipped;
   for (const Sweep& sweep : sweeps) {
-    std::vector<std::pair<std::string, double>> jobs;
-    for (const std::string& m : methods) {
-      for (double v : sweep.values) jobs.push_back({make_text(sweep.name, m, v), v});
+    // A sweep whose profiles are not in the directory is left out, and the summary says so.
+    const std::string missing = MissingProfile(sweep.name, profiles);
+    if (!missing.empty()) {
+      std::cerr << "stability: " << sweep.name << " left out: no " << missing << " in "
+                << profiles.string() << '\n';
+      skipped += " " + sweep.name + " (no " + missing + ")";
+      continue;
     }
-    std::vector<double> half;
-    if (sweep.check_continuity) {
-      for (std::size_t k = 0; k + 1 < sweep.values.size(); ++k) {
-        half.push_back(sweep.values[k]);
-        half.push_back(0.5 * (sweep.values[k] + sweep.values[k + 1]));
-      }
-      half.push_back(sweep.values.back());
-      for (const std::string& m : methods) {
-        for (double v : half) jobs.push_back({make_text(sweep.name, m, v), v});
-      }
-    }
-    std::cerr << "stability: " << sweep.name << " (" << jobs.size() << " solves)\n";
-    const std::vector<Sample> results = RunAll(jobs, threads);
-    std::ofstream csv(out_dir / (sweep.name + ".csv"));
-    csv << "method_index,method,parameter,status,fx,fy,fz,z,contact_y,n_patches,normal_it,"
-           "tangential_it,fz_it,seconds,message\n";
-    csv.precision(10);
-    const std::size_t n = sweep.values.size();
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      std::vector<Sample> full(results.begin() + m * n, results.begin() + (m + 1) * n);
-      int counts[4] = {0, 0, 0, 0};
-      int max_n = 0, max_t = 0, max_f = 0;
-      double seconds = 0.0;
-      for (const Sample& s : full) {
-        csv << m << ',' << methods[m] << ',' << s.parameter << ',' << s.status << ',' << s.fx << ','
-            << s.fy << ',' << s.fz << ',' << s.z << ',' << s.contact_y << ',' << s.n_patches << ','
-            << s.normal_iterations << ',' << s.tangential_iterations << ',' << s.fz_iterations
-            << ',' << s.seconds << ",\"" << s.message << "\"\n";
-        counts[s.status == "ok"              ? 0
-               : s.status == "no_contact"    ? 1
-               : s.status == "not_converged" ? 2
-                                             : 3]++;
-        const bool finite = std::isfinite(s.fx) && std::isfinite(s.fy) && std::isfinite(s.fz);
-        if (s.status == "ok" && !finite) ++counts[3];
-        max_n = std::max(max_n, s.normal_iterations);
-        max_t = std::max(max_t, s.tangential_iterations);
-        max_f = std::max(max_f, s.fz_iterations);
-        seconds += s.seconds;
-      }
-      failures += counts[2] + counts[3];
-      std::string ratio = "–";
-      if (sweep.check_continuity) {
-        const std::size_t base = methods.size() * n + m * half.size();
-        std::vector<Sample> fine(results.begin() + base, results.begin() + base + half.size());
-        double Sample::*field = sweep.name == "heavy_haul_z" ? &Sample::fz : &Sample::fy;
-        const double a = LargestJump(full, field), b = LargestJump(fine, field);
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.2f", a > 0.0 ? b / a : 0.0);
-        ratio = buf;
-      }
-      char time_buf[32];
-      std::snprintf(time_buf, sizeof time_buf, "%.3f", seconds / full.size());
-      summary << "| " << sweep.name << " | " << methods[m] << " | " << full.size() << " | "
-              << counts[0] << " | " << counts[1] << " | " << counts[2] << " | " << counts[3]
-              << " | " << max_n << " | " << max_t << " | " << max_f << " | " << ratio << " | "
-              << time_buf << " |\n";
-    }
-    csv.close();
-    Plot(out_dir, sweep, methods);
+    done.push_back(sweep);
+    const auto make = [&](const std::string& m, double v) -> CaseMaker {
+      const std::string text = make_text(sweep.name, m, v);
+      return [text] { return ParseCase(text, fs::current_path(), "stability"); };
+    };
+    failures += RunSweep(sweep, methods, make, threads, out_dir, summary);
   }
-  summary << "\nPlots: ";
-  for (const Sweep& s : sweeps) summary << "[" << s.name << "](" << s.name << ".png) ";
-  summary << "\n";
+  WritePlotLinks(summary, done);
+  if (!skipped.empty()) summary << "\nLeft out, for want of their profiles:" << skipped << "\n";
   std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
+
+// A user's case swept over one quantity with each method.
+struct CaseSweepOptions {
+  std::string case_path;
+  std::string quantity = "y";
+  double from = 0.0, to = 10.0, step = 0.5;
+  std::vector<std::string> methods = {"planar", "planar-icp", "curved"};
+  bool check_continuity = false;
+};
+
+int RunCaseSweep(const CaseSweepOptions& o, const fs::path& out_dir, int threads) {
+  const Case base = LoadCase(o.case_path);
+  if (base.type != CaseType::kWheelRail) {
+    throw InputError(o.case_path + ": the stability study sweeps wheel-rail cases only");
+  }
+  if (!(o.step > 0.0) || !(o.to > o.from) || (o.to - o.from) / o.step > 1e5) {
+    throw InputError("--from " + FormatSize(o.from) + " --to " + FormatSize(o.to) + " --step " +
+                     FormatSize(o.step) + ": need from < to and 0 < step, at most 1e5 steps");
+  }
+  fs::create_directories(out_dir);
+  const std::string stem = fs::path(o.case_path).stem().string();
+  const Sweep sweep{
+      stem + "_" + o.quantity,
+      stem + ": " + o.quantity,
+      (o.quantity == "z" ? "wheelset z" : o.quantity) + ", " + SweepableQuantities().at(o.quantity),
+      Range(o.from, o.to, o.step),
+      false,
+      o.check_continuity};
+  std::ofstream summary(out_dir / "README.md");
+  WriteSummaryHeader(summary, "`" + o.case_path + "` swept over " + o.quantity + " from " +
+                                  FormatSize(o.from) + " to " + FormatSize(o.to) + " in steps of " +
+                                  FormatSize(o.step) + " (`wrc study stability`).");
+  const auto make = [&](const std::string& m, double v) -> CaseMaker {
+    return [&base, m, v, &o] {
+      Case c = base;
+      ApplyMethod(m, &c.method);
+      SetQuantity(o.quantity, v, &c);
+      return c;
+    };
+  };
+  const int failures = RunSweep(sweep, o.methods, make, threads, out_dir, summary);
+  WritePlotLinks(summary, {sweep});
+  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  return failures == 0 ? kExitOk : kExitGateFailed;
+}
+
+void AddStabilityStudy(CLI::App& study, int* exit_code) {
+  auto* stability = study.add_subcommand(
+      "stability",
+      "Sweep a case over one quantity with the planar and curved methods and report (or, with "
+      "--profiles and no CASE, the built-in hard cases)");
+  auto sweep = std::make_shared<CaseSweepOptions>();
+  auto out = std::make_shared<std::string>("study-stability");
+  auto profiles = std::make_shared<std::string>();
+  auto quick = std::make_shared<bool>(false);
+  auto threads = std::make_shared<int>(static_cast<int>(std::thread::hardware_concurrency()));
+  stability->add_option("CASE", sweep->case_path, "Wheel-rail case file to sweep")
+      ->check(CLI::ExistingFile);
+  std::vector<std::string> names;
+  for (const auto& [name, unit] : SweepableQuantities()) names.push_back(name);
+  stability->add_option("--sweep", sweep->quantity, "Quantity swept")
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
+  stability->add_option("--from", sweep->from, "First value")->capture_default_str();
+  stability->add_option("--to", sweep->to, "Last value")->capture_default_str();
+  stability->add_option("--step", sweep->step, "Step")->capture_default_str();
+  stability->add_option("--methods", sweep->methods, "Methods compared")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"planar", "planar-icp", "curved"}))
+      ->capture_default_str();
+  stability->add_flag("--continuity", sweep->check_continuity,
+                      "Also solve at half the step and report the jump ratio");
+  stability->add_option("--out", *out, "Output directory (CSV, PNG, README.md)")
+      ->capture_default_str();
+  stability->add_option("--profiles", *profiles,
+                        "Without CASE: directory with the profiles of the built-in hard cases");
+  stability->add_flag("--quick", *quick, "Built-in hard cases: double every step");
+  stability->add_option("--threads", *threads, "Worker threads")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  stability->callback([=]() {
+    try {
+      if (!sweep->case_path.empty()) {
+        *exit_code = RunCaseSweep(*sweep, *out, std::max(1, *threads));
+        return;
+      }
+      if (profiles->empty()) {
+        throw InputError("give a CASE to sweep, or --profiles DIR for the built-in hard cases");
+      }
+      if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
+        throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
+      }
+      *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
+    } catch (const std::exception& e) {
+      std::cerr << "wrc study stability: error: " << e.what() << '\n';
+      *exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace
 
 void AddStudyCommand(CLI::App& app, int* exit_code) {
   auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
   study->require_subcommand(1);
   AddCostStudies(*study, exit_code);
-  auto* stability = study->add_subcommand(
-      "stability", "Sweep the hard cases (two-point, flange, merging, grooves) and report");
-  auto out = std::make_shared<std::string>("docs/stability");
-  auto profiles = std::make_shared<std::string>("../shared/profiles");
-  auto quick = std::make_shared<bool>(false);
-  auto threads = std::make_shared<int>(static_cast<int>(std::thread::hardware_concurrency()));
-  stability->add_option("--out", *out, "Output directory (CSV, PNG, README.md)");
-  stability->add_option("--profiles", *profiles, "Directory with the profile files");
-  stability->add_flag("--quick", *quick, "Double every step (for a fast check)");
-  stability->add_option("--threads", *threads, "Worker threads")->check(CLI::PositiveNumber);
-  stability->callback([=]() {
-    if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
-      std::cerr << "wrc study stability: error: --profiles " << *profiles
-                << ": MBench_S1002_v3.prw not found there\n";
-      *exit_code = kExitBadInput;
-      return;
-    }
-    *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
-  });
+  AddStabilityStudy(*study, exit_code);
 }
 
 }  // namespace wrc::cli

@@ -270,6 +270,7 @@ dx = 0.5
 ds = 0.25
 [state]
 z = 0.1
+velocity = 3000.0
 )";
   const Case c = ParseCase(text, "/data/cases", "minimal.toml");
   EXPECT_EQ(c.type, CaseType::kWheelRail);
@@ -293,12 +294,16 @@ z = 0.1
   EXPECT_DOUBLE_EQ(c.method.combine_distance, 6.0);
   EXPECT_TRUE(c.effects.tangential);
   EXPECT_TRUE(c.effects.midplane_correction);
-  EXPECT_DOUBLE_EQ(c.state.y, 6.25);
+  EXPECT_EQ(c.state.y, 0.0);
   EXPECT_DOUBLE_EQ(*c.state.z, 0.1);
-  EXPECT_DOUBLE_EQ(c.state.roll, 0.0);
-  EXPECT_DOUBLE_EQ(c.state.yaw, 0.024);
-  EXPECT_DOUBLE_EQ(c.state.velocity, 2000.0);
-  EXPECT_DOUBLE_EQ(c.state.omega, -4.3481124);
+  EXPECT_FALSE(c.state.fz.has_value());
+  EXPECT_EQ(c.state.roll, 0.0);
+  EXPECT_EQ(c.state.yaw, 0.0);
+  EXPECT_DOUBLE_EQ(c.state.velocity, 3000.0);
+  // Neither omega nor spin: free rolling at the nominal radius, spin = 0.
+  ASSERT_TRUE(c.state.spin.has_value());
+  EXPECT_EQ(*c.state.spin, 0.0);
+  EXPECT_DOUBLE_EQ(c.state.omega, -3000.0 / 460.0);
   EXPECT_DOUBLE_EQ(c.state.vy, 0.0);
   EXPECT_DOUBLE_EQ(c.state.vroll, 0.0);
   EXPECT_DOUBLE_EQ(c.state.vyaw, 0.0);
@@ -448,6 +453,13 @@ TEST(CaseIo, RejectsMissingRequiredKeys) {
               std::string::npos)
         << message;
     EXPECT_NE(message.find("state.fz"), std::string::npos) << message;
+  }
+  {
+    const std::string message = ErrorOf(Replace(kWheelRailCase, "velocity = 2000.0", ""));
+    EXPECT_NE(message.find("case.toml:" + std::to_string(LineOf(kWheelRailCase, "[state]")) +
+                           ": state.velocity: missing"),
+              std::string::npos)
+        << message;
   }
   {
     const std::string message = ErrorOf(Replace(kHalfspaceCase, "fn = 1000.0", ""));

@@ -32,7 +32,7 @@ roll = 0.0
 velocity = 2000.0
 )";
 
-// SPEC §4.1's example table, with fz fixed in [state].
+// The scene example of docs/reference/case-files.md, with fz fixed in [state].
 const std::string kSpecTable = R"([table]
 axes    = ["y", "roll", "yaw", "spin"]
 y       = {from = -10.0, to = 10.0, step = 0.5}

@@ -58,7 +58,7 @@ void ExpectTotals(const WheelRailResult& r, const json& ref, double rtol) {
 class PlanarReference : public testing::TestWithParam<fs::path> {};
 class CurvedReference : public testing::TestWithParam<fs::path> {};
 
-// Issue 4: total forces within 1 % of the vertical load, reference location within 0.2 mm and
+// Total forces within 1 % of the vertical load, reference location within 0.2 mm and
 // angle within 0.5°, same number of patches, at the same grid.
 TEST_P(PlanarReference, MatchesContact) {
   const json ref = Reference(GetParam());
@@ -74,7 +74,7 @@ TEST_P(PlanarReference, MatchesContact) {
   }
 }
 
-// Issue 5: total forces within 1 % of the vertical load, per-patch fn within 1 %.
+// Total forces within 1 % of the vertical load, per-patch fn within 1 %.
 TEST_P(CurvedReference, MatchesContact) {
   const json ref = Reference(GetParam());
   const WheelRailResult r = SolveWheelRail(LoadCase(GetParam()));

@@ -1,0 +1,169 @@
+// `wrc study` as a user runs it: from a directory outside the checkout, on the user's own case
+// and scene files (with their profiles next to them), writing CSV, PNG and a Markdown summary
+// into --out.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
+const fs::path kSource = WRC_SOURCE_DIR;
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The CSV's rows after the header, split at commas (no quoted commas in the columns read).
+std::vector<std::vector<std::string>> CsvRows(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream text(ReadFile(path));
+  std::string line;
+  std::getline(text, line);  // header
+  while (std::getline(text, line)) {
+    std::vector<std::string> cells;
+    std::stringstream cellstream(line);
+    for (std::string cell; std::getline(cellstream, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+bool IsPng(const fs::path& path) {
+  return fs::is_regular_file(path) && ReadFile(path).substr(1, 3) == "PNG";
+}
+
+bool HaveGnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+// A user's working directory outside the checkout, holding copies of the shipped cases and
+// the profiles they name.
+class Study : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("wrc_study_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "profiles");
+    for (const char* name : {"MBench_UIC60_v3.prr", "MBench_S1002_v3.prw"}) {
+      fs::copy_file(kSource / "tables" / "profiles" / name, dir_ / "profiles" / name);
+    }
+    fs::copy_file(kSource / "tables" / "hertz_demo.toml", dir_ / "hertz.toml");
+    // The shipped Manchester case with 1 mm elements, to keep every solve short.
+    std::string text = ReadFile(kSource / "tables" / "mbench_case.toml");
+    text.replace(text.find("dx = 0.5"), 8, "dx = 1.0");
+    text.replace(text.find("ds = 0.5"), 8, "ds = 1.0");
+    std::ofstream(dir_ / "mbench.toml") << text;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `wrc ARGS` in the user's directory; stdout and stderr go to files there.
+  int Run(const std::string& args) const {
+    const std::string command = "cd '" + dir_.string() + "' && timeout 120 '" + kWrc.string() +
+                                "' " + args + " >stdout.txt 2>stderr.txt";
+    const int status = std::system(command.c_str());
+    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string Err() const { return ReadFile(dir_ / "stderr.txt"); }
+  std::string Out() const { return ReadFile(dir_ / "stdout.txt"); }
+
+  fs::path dir_;
+};
+
+TEST_F(Study, SolverRunsOnTheUsersCases) {
+  ASSERT_EQ(Run("study solver hertz.toml mbench.toml --sizes 0.5,0.25 --out out"), 0) << Err();
+  const auto rows = CsvRows(dir_ / "out" / "solver.csv");
+  ASSERT_EQ(rows.size(), 4u);  // two cases at two sizes
+  for (const auto& row : rows) {
+    ASSERT_GE(row.size(), 11u);
+    EXPECT_EQ(row[3], "ok");
+    const double fz = std::stod(row[6]);
+    // Both cases prescribe the normal (vertical) force: 10 kN, whatever the element size.
+    EXPECT_NEAR(fz, 1e4, 0.05) << row[0];
+    // The finest size is the reference: its own errors are zero.
+    if (row[1] == "0.25") {
+      EXPECT_EQ(std::stod(row[9]), 0.0) << row[0];
+    }
+  }
+  // Hertz: the approach of the half-space case is 0.022628 mm; within 3 % at 0.25 mm elements.
+  EXPECT_NEAR(std::stod(rows[1][7]), 0.022628, 0.03 * 0.022628);
+  EXPECT_NE(ReadFile(dir_ / "out" / "solver.md").find("| hertz.toml | 0.5 |"), std::string::npos);
+  if (HaveGnuplot()) {
+    EXPECT_TRUE(IsPng(dir_ / "out" / "solver.png"));
+  }
+}
+
+TEST_F(Study, StabilitySweepsTheUsersCase) {
+  ASSERT_EQ(Run("study stability mbench.toml --sweep y --from 0 --to 2 --step 1 "
+                "--methods planar,curved --threads 2 --out out"),
+            0)
+      << Err();
+  const auto rows = CsvRows(dir_ / "out" / "mbench_y.csv");
+  ASSERT_EQ(rows.size(), 6u);  // two methods at three positions
+  for (const auto& row : rows) {
+    EXPECT_EQ(row[3], "ok");
+    EXPECT_NEAR(std::stod(row[6]), 1e4, 1e-2);  // the case's prescribed fz
+  }
+  EXPECT_EQ(rows[1][2], "1");  // the swept values, in order
+  EXPECT_NE(ReadFile(dir_ / "out" / "README.md").find("| mbench_y | curved | 3 | 3 |"),
+            std::string::npos);
+  if (HaveGnuplot()) {
+    EXPECT_TRUE(IsPng(dir_ / "out" / "mbench_y.png"));
+  }
+}
+
+TEST_F(Study, TablesRunsOnTheUsersScene) {
+  std::string scene = ReadFile(dir_ / "mbench.toml");
+  scene.replace(scene.find("y = 4.0  # mm\n"), 14, "");
+  scene += "[table]\naxes = [\"y\"]\ny = [0.0, 2.0, 4.0]\noutputs = [\"fx\", \"fy\", \"fz\"]\n";
+  std::ofstream(dir_ / "scene.toml") << scene;
+  ASSERT_EQ(Run("study tables scene.toml --targets 0.2 --samples 4 --threads 2 --out out"), 0)
+      << Err();
+  const auto rows = CsvRows(dir_ / "out" / "tables.csv");
+  ASSERT_EQ(rows.size(), 2u);  // the refined table and its uniform twin
+  EXPECT_EQ(rows[0][0], "refined");
+  EXPECT_EQ(rows[1][0], "uniform");
+  EXPECT_EQ(rows[0][2], rows[1][2]);  // the same number of points, by construction
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / "tables.md"));
+  if (HaveGnuplot()) {
+    EXPECT_TRUE(IsPng(dir_ / "out" / "tables.png"));
+  }
+}
+
+TEST_F(Study, HelpShowsTheDefaults) {
+  ASSERT_EQ(Run("study tables --help"), 0) << Err();
+  EXPECT_NE(Out().find("300"), std::string::npos) << Out();           // --samples
+  EXPECT_NE(Out().find("study-tables"), std::string::npos) << Out();  // --out
+  ASSERT_EQ(Run("study solver --help"), 0) << Err();
+  EXPECT_NE(Out().find("0.25"), std::string::npos) << Out();  // --sizes
+  ASSERT_EQ(Run("study stability --help"), 0) << Err();
+  EXPECT_NE(Out().find("planar-icp"), std::string::npos) << Out();  // --methods
+  EXPECT_NE(Out().find("study-stability"), std::string::npos) << Out();
+}
+
+TEST_F(Study, BadInputIsAnErrorNamingIt) {
+  EXPECT_EQ(Run("study solver missing.toml"), 2);
+  EXPECT_NE(Err().find("missing.toml"), std::string::npos) << Err();
+  EXPECT_EQ(Run("study solver hertz.toml --sizes 0.5"), 2);
+  EXPECT_NE(Err().find("--sizes"), std::string::npos) << Err();
+  EXPECT_EQ(Run("study stability hertz.toml"), 2);
+  EXPECT_NE(Err().find("wheel-rail"), std::string::npos) << Err();
+  EXPECT_EQ(Run("study stability"), 2);
+  EXPECT_NE(Err().find("--profiles"), std::string::npos) << Err();
+}
+
+}  // namespace
