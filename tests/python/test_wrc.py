@@ -3,8 +3,9 @@ shared library) and against values known in closed form.
 
     test_wrc.py MODULE_DIR LIBWRC_RUNTIME_SO TABLE_MAKER SCRATCH_DIR
 
-TABLE_MAKER is tests/integration/make_table.cpp's executable. Prints the multilinear
-throughput of Table.eval on 10^6 random points.
+TABLE_MAKER is tests/integration/make_table.cpp's executable. With WRC_BENCH=1 it also
+measures the multilinear throughput of Table.eval on 10^6 random points (a benchmark, not a
+test: it asserts nothing about time).
 """
 
 import ctypes
@@ -164,6 +165,7 @@ class PythonModuleTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             t.interpolation = "quadratic"
 
+    @unittest.skipUnless(os.environ.get("WRC_BENCH"), "a benchmark: set WRC_BENCH=1")
     def test_throughput_multilinear(self):
         rng = np.random.default_rng(21)
         points = random_points(rng, 10**6, self.low, self.high)
@@ -176,8 +178,6 @@ class PythonModuleTest(unittest.TestCase):
         rate = len(points) / best
         print(f"\nTable.eval multilinear, 10^6 random points, 4 axes, 8 outputs: "
               f"{rate / 1e6:.1f} M points/s ({1e9 / rate:.0f} ns per point)")
-        # A floor well below the measured rate, so that a loaded machine does not fail it.
-        self.assertGreater(rate, 1e6)
 
     def test_wheelset_mirror_and_c_api(self):
         ws = wrc.Wheelset(right=self.table)
