@@ -486,7 +486,11 @@ HalfspaceGeometry ReadGeometry(const Section& section) {
 
 WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset,
                                 const CaseParseOptions& options) {
+  // What [state] leaves out is 0 (free rolling: spin = 0), not the example values that a
+  // WheelsetState built in code starts from. (A velocity left out stays 2000 mm/s: with omega
+  // from spin = 0 it scales every creepage's numerator and denominator alike.)
   WheelsetState state;
+  state.y = state.roll = state.yaw = 0.0;
   state.y = section.Number("y", state.y);
   state.z = section.OptionalNumber("z");
   state.fz = section.OptionalNumber("fz");
@@ -510,6 +514,15 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   state.spin = section.OptionalNumber("spin");
   if (omega && state.spin) section.Fail("spin", "give either state.omega or state.spin, not both");
   if (omega) state.omega = *omega;
+  if (!omega && !state.spin && !options.axis_names.count("omega") &&
+      !options.axis_names.count("spin")) {
+    state.omega = OmegaFromSpin(0.0, state.velocity, wheelset.nominal_radius);
+    if (!std::isfinite(state.omega)) {
+      section.file().FailAt(section.position(), "state.omega",
+                            "missing, so free rolling (spin = 0), whose omega = "
+                            "-state.velocity / wheelset.nominal_radius is not finite");
+    }
+  }
   if (state.spin) {
     RequireMagnitudeAtMost(section, "spin", *state.spin, kMaxCreepage,
                            "a relative creepage; 1 is 100 % slip");

@@ -293,12 +293,15 @@ z = 0.1
   EXPECT_DOUBLE_EQ(c.method.combine_distance, 6.0);
   EXPECT_TRUE(c.effects.tangential);
   EXPECT_TRUE(c.effects.midplane_correction);
-  EXPECT_DOUBLE_EQ(c.state.y, 6.25);
+  // Left out of [state]: y, roll, yaw 0 and free rolling (spin = 0, omega = -V/R), not the
+  // example values of a WheelsetState built in code (y = 6.25, yaw = 0.024, an omega for
+  // V = 2000 mm/s only), which used to leak into every case that left them out.
+  EXPECT_DOUBLE_EQ(c.state.y, 0.0);
   EXPECT_DOUBLE_EQ(*c.state.z, 0.1);
   EXPECT_DOUBLE_EQ(c.state.roll, 0.0);
-  EXPECT_DOUBLE_EQ(c.state.yaw, 0.024);
+  EXPECT_DOUBLE_EQ(c.state.yaw, 0.0);
   EXPECT_DOUBLE_EQ(c.state.velocity, 2000.0);
-  EXPECT_DOUBLE_EQ(c.state.omega, -4.3481124);
+  EXPECT_DOUBLE_EQ(c.state.omega, -2000.0 / 460.0);
   EXPECT_DOUBLE_EQ(c.state.vy, 0.0);
   EXPECT_DOUBLE_EQ(c.state.vroll, 0.0);
   EXPECT_DOUBLE_EQ(c.state.vyaw, 0.0);
