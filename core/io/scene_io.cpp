@@ -444,7 +444,7 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
   const Section table(file, root, "table");
   if (!table.exists()) {
     file.FailAt(toml::source_position{0, 0}, "[table]",
-                "missing: a scene file needs a [table] section with axes (SPEC §4.1)");
+                "missing: a scene file needs a [table] section with axes");
   }
 
   const std::vector<std::string> axis_names = ReadAxisNames(file, table);

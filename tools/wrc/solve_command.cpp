@@ -200,12 +200,12 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
 }  // namespace
 
 void AddSolveCommand(CLI::App& app, int* exit_code) {
-  auto* cmd = app.add_subcommand("solve", "Solve one contact case (SPEC §2 case file)");
+  auto* cmd = app.add_subcommand("solve", "Solve one contact case (a TOML case file)");
   auto case_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
   cmd->add_option("CASE", *case_path, "Case file (TOML)")->required();
-  cmd->add_flag("--json", *as_json, "Print the result as one JSON object (SPEC §3)");
+  cmd->add_flag("--json", *as_json, "Print the result as one JSON object (docs/output-format.md)");
   cmd->add_option("--out", *out_dir, "Also write the solution fields into this directory");
   cmd->callback([=]() {
     const auto t0 = std::chrono::steady_clock::now();
