@@ -290,6 +290,10 @@ Track ReadTrack(const Section& section) {
   Track track;
   track.gauge_height = section.Number("gauge_height", track.gauge_height);
   track.cant = section.Number("cant", track.cant);
+  // The rail's inclination: 1:20 to 1:40 (0.05 to 0.025 rad) on real track, 0 on test rigs.
+  // Beyond 0.2 rad the rail leans so far that the wheel meets the side of its head; 1e10 rad
+  // (a unit slip) used to be taken modulo a turn and solved as ok.
+  RequireMagnitudeAtMost(section, "cant", track.cant, 0.2, "rad, rail inclination; 1:40 is 0.025");
   if (track.absolute_placement()) {
     // gauge_width would be silently ignored: say so rather than surprise the user.
     if (section.Has("gauge_width")) {
@@ -345,8 +349,15 @@ void ReadMaterials(const Section& section, Case& result) {
     }
   }
   const std::vector<NumberAt> modulus = ReadPerBody(section, "shear_modulus");
+  // Shear moduli from soft polymers (~1 N/mm²) to diamond (~5e5 N/mm²) lie well inside; outside,
+  // the elastic displacements under any load overflow or vanish against the geometry, and the
+  // solver used to fail on a profile's arc length instead of naming this key.
+  constexpr double kMinShearModulus = 1e-2, kMaxShearModulus = 1e7;
   for (const NumberAt& value : modulus) {
-    if (!(value.value > 0.0)) section.file().Fail(value.node, value.path, "must be positive");
+    if (!(value.value >= kMinShearModulus && value.value <= kMaxShearModulus)) {
+      section.file().Fail(value.node, value.path,
+                          "must be between 0.01 and 1e+07 N/mm² (steel: 82000)");
+    }
   }
   // Body 1 is the rail, body 2 the wheel.
   if (!poisson.empty()) {
@@ -488,6 +499,7 @@ HalfspaceGeometry ReadGeometry(const Section& section) {
 
 WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset,
                                 const CaseParseOptions& options) {
+  // What [state] leaves out is 0 (free rolling: spin = 0); the velocity must be given.
   WheelsetState state;
   state.y = section.Number("y", state.y);
   state.z = section.OptionalNumber("z");

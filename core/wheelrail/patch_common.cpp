@@ -217,7 +217,11 @@ void SolveCoupledOnGrid(const PatchContext& ctx, const Grid& grid, const std::ve
 
 }  // namespace
 
-void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
+namespace {
+
+// The normal and tangential solution on the potential contact area (SolveOnGrid without the
+// measurement of the contact's extent).
+void SolveFields(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
                  const std::vector<double>& wx, const std::vector<double>& wy,
                  const std::vector<double>& mu, PatchResult& result) {
   if (grid.size() > static_cast<std::size_t>(ctx.options->max_patch_elements)) {
@@ -371,6 +375,37 @@ void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<do
     cache.normal_box = cache.tangential_box = box;
     cache.has_normal = cache.has_tangential = true;
   }
+}
+
+// Where the pressure lies on the grid: how many columns and rows the contact spans, and
+// whether it reaches the grid's outermost elements. The grid is laid out one element beyond the
+// interpenetration found by the contact search, and pressure needs interpenetration (h < 0)
+// for identical bodies, so pressure there means that the search missed part of the
+// interpenetration or (dissimilar bodies) that the coupling carried the contact past it.
+void MeasureContact(const Grid& grid, PatchResult& result) {
+  int i_lo = grid.nx, i_hi = -1, j_lo = grid.ny, j_hi = -1;
+  for (int j = 0; j < grid.ny; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      if (!(result.pn[grid.index(i, j)] > 0.0)) continue;
+      i_lo = std::min(i_lo, i);
+      i_hi = std::max(i_hi, i);
+      j_lo = std::min(j_lo, j);
+      j_hi = std::max(j_hi, j);
+    }
+  }
+  if (i_hi < 0) return;
+  result.contact_columns = i_hi - i_lo + 1;
+  result.contact_rows = j_hi - j_lo + 1;
+  result.contact_at_border = i_lo == 0 || j_lo == 0 || i_hi == grid.nx - 1 || j_hi == grid.ny - 1;
+}
+
+}  // namespace
+
+void SolveOnGrid(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
+                 const std::vector<double>& wx, const std::vector<double>& wy,
+                 const std::vector<double>& mu, PatchResult& result) {
+  SolveFields(ctx, grid, h, wx, wy, mu, result);
+  MeasureContact(grid, result);
 }
 
 void FillReferenceOutputs(const PatchContext& ctx, const PatchReference& ref,

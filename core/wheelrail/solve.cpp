@@ -217,27 +217,102 @@ void AddTruncationWarnings(const Problem& pb, double z, WheelRailResult& result)
   }
 }
 
-// A patch resolved by fewer than 16 elements in contact (4 across each way: the pressure's peak
-// and edges then get about one element each, and the force error is of the order of 10 %) is
-// too coarse to trust; a peak pressure above 1e5 N/mm² (100 GPa, some 50 times the strength of
-// rail steel) means a placement far outside what the profiles allow.
+// Fewest elements across a patch, along x and along s, for a result worth trusting: with four
+// the pressure's peak and edges are each resolved by about one element, and the force error is
+// of the order of 10 % (the half-space solve asks the same).
+constexpr int kMinElementsAcross = 4;
+
+// What the patch's grid says about its solution: too few elements across it, or pressure on
+// the outermost elements of the potential contact area (the patch was cut off by its grid).
 void AddResolutionWarnings(WheelRailResult& result) {
-  constexpr int kMinContactElements = 16;
-  constexpr double kMaxPlausiblePressure = 1e5;
+  for (std::size_t n = 0; n < result.patches.size(); ++n) {
+    const PatchResult& p = result.patches[n];
+    if (p.n_contact == 0) continue;
+    const std::string patch = "patch " + std::to_string(n + 1);
+    if (p.contact_columns < kMinElementsAcross || p.contact_rows < kMinElementsAcross) {
+      result.warnings.push_back(patch + " has only " + std::to_string(p.contact_columns) + " x " +
+                                std::to_string(p.contact_rows) +
+                                " elements across it (fewer than 4 along x or s): grid.dx/grid.ds "
+                                "are too coarse for it");
+    }
+    if (p.contact_at_border) {
+      result.warnings.push_back(patch +
+                                " carries pressure on the border of its potential contact area: "
+                                "the contact may extend beyond it, and the forces are those of a "
+                                "cut-off patch");
+    }
+  }
+}
+
+// Bounds beyond which a result describes no wheel on a rail, only the numbers of a placement
+// or load error; each is far outside what a real wheel–rail contact reaches.
+//
+// Peak pressure. Hertz gives pmax ∝ F^(1/3): the sharpest contact of the Manchester pair
+// (flange root on gauge corner, 10 kN) has pmax ≈ 3000 N/mm², so even 250 kN (a heavy-haul
+// wheel load with its dynamic part) on such radii gives about 3000·25^(1/3) ≈ 8800 N/mm².
+// Steel cannot carry more: its hardness (the mean pressure of fully plastic indentation) is
+// 2500–4000 N/mm² for wheel and rail steels. 1e4 N/mm² is above both.
+constexpr double kMaxPlausiblePressure = 1e4;
+// Interpenetration of the undeformed surfaces. Hertz gives δ ∝ F^(2/3): tread contacts of the
+// Manchester pair reach 0.03 mm and its flange contact 0.05 mm at 10 kN, a worn heavy-haul pair
+// 0.1 mm at 40 kN; 1 mm is (1/0.05)^1.5 ≈ 90 times the load of the sharpest of them, about
+// 1 MN, four times any wheel load.
+constexpr double kMaxPlausibleApproach = 1.0;
+// First contact at the nominal position (y = roll = yaw = 0), mm from z = 0. z = 0 puts the
+// wheel's nominal rolling circle on the track plane, so a matching pair first touches within
+// the height differences of tread and rail crown across their lateral offset: 1:40 cones over
+// ±30 mm give 0.75 mm, hollow-worn treads up to about 3 mm (the Manchester pair: 0.27 mm).
+// 10 mm from z = 0 the wheel rests on its flange or hangs beside the rail: a profile mirrored
+// the wrong way (mirror_y), a profile in other units or a wrong placement key.
+constexpr double kMaxNominalContactHeight = 10.0;
+
+void AddPressureWarnings(WheelRailResult& result) {
   for (std::size_t n = 0; n < result.patches.size(); ++n) {
     const PatchResult& p = result.patches[n];
     const std::string patch = "patch " + std::to_string(n + 1);
-    if (p.n_contact > 0 && p.n_contact < kMinContactElements) {
-      result.warnings.push_back(patch + " has only " + std::to_string(p.n_contact) +
-                                " elements in contact (fewer than 16): grid.dx/grid.ds are too "
-                                "coarse for it");
-    }
     if (p.pmax > kMaxPlausiblePressure) {
-      result.warnings.push_back(patch + ": peak pressure " + FormatNumber(p.pmax) +
-                                " N/mm² is implausible (more than 1e5): check state.z and the "
-                                "profiles' placement");
+      result.warnings.push_back(patch + ": peak pressure " + Fixed(p.pmax, 0) +
+                                " N/mm² is implausible (more than 1e4, above what steel "
+                                "carries): check state.z and the profiles' placement");
+    }
+    if (p.approach > kMaxPlausibleApproach) {
+      result.warnings.push_back(patch + ": the undeformed surfaces interpenetrate by " +
+                                Fixed(p.approach, 3) +
+                                " mm (more than 1 mm, far beyond any wheel load): check state.z "
+                                "and the profiles' placement");
     }
   }
+}
+
+// The smallest gap of a search: the wheelset height z at which the surfaces first touch
+// (+inf where the wheel lies nowhere above the rail).
+double FirstContact(const ContactSearch& search) {
+  double first = std::numeric_limits<double>::infinity();
+  for (const auto& s : search.samples) {
+    if (s.valid) first = std::min(first, s.gap);
+  }
+  return first;
+}
+
+// Whether the profiles, as placed, first touch near z = 0 at the nominal position
+// (kMaxNominalContactHeight); `first_contact` is that of the case's own pose, which is the
+// nominal one when y, roll and yaw are all 0 (no second search then).
+void AddPlacementWarning(const Problem& pb, double first_contact, WheelRailResult& result) {
+  double nominal = first_contact;
+  if (pb.kin.y != 0.0 || pb.kin.roll != 0.0 || pb.kin.yaw != 0.0) {
+    WheelsetKinematics kin = pb.kin;
+    kin.y = kin.roll = kin.yaw = kin.z = 0.0;
+    const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
+    nominal = FirstContact(wr::SearchContact(*pb.rail, wheel, kSearchStep, 0.0));
+  }
+  if (std::fabs(nominal) <= kMaxNominalContactHeight) return;
+  const std::string where = std::isfinite(nominal)
+                                ? "first touch at z = " + Fixed(nominal, 2) + " mm"
+                                : "do not touch at all (the wheel lies nowhere above the rail)";
+  result.warnings.push_back(
+      "at the nominal position (y = roll = yaw = 0) the profiles as placed " + where +
+      ", more than 10 mm from z = 0: a profile mirrored the wrong way (mirror_y), in other "
+      "units, or a wrong [track]/[wheelset] placement; the result is that of this placement");
 }
 
 // Every repair made to the profiles while reading them: the result rests on the repaired
@@ -422,14 +497,8 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     }
     timings.search = since(t_search);
   }
-  bool any_valid = false;
-  double first_contact = 1e300;  // wheelset z at which the surfaces first touch
-  for (const auto& s : pb.search.samples) {
-    if (!s.valid) continue;
-    any_valid = true;
-    first_contact = std::min(first_contact, s.gap);
-  }
-  if (!any_valid) {
+  const double first_contact = FirstContact(pb.search);  // wheelset z of first touch
+  if (!std::isfinite(first_contact)) {
     throw InputError(c.source_name + ": state.y = " + FormatNumber(st.y) +
                      " mm: the wheel profile lies nowhere above the rail profile");
   }
@@ -637,7 +706,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
     AddTruncationWarnings(pb, result.z, result);
     AddHalfSpaceWarnings(pb, result.z, result);
     AddResolutionWarnings(result);
+    AddPressureWarnings(result);
   }
+  AddPlacementWarning(pb, first_contact, result);
   LocateResultant(pb, result);
   result.fz_iterations = iterations;
   timings.total = since(t_start);

@@ -47,6 +47,11 @@ struct PatchResult {
   double fn = 0.0, fx = 0.0, fs = 0.0, mn = 0.0;  ///< Forces on the rail N, spin moment N·mm.
   double pmax = 0.0;                              ///< N/mm².
   int n_contact = 0, n_slip = 0, n_adhesion = 0, n_pot = 0;
+  /// Extent of the elements in contact: columns (along x) and rows (along s) they span.
+  int contact_columns = 0, contact_rows = 0;
+  /// Pressure on an outermost row or column of the potential contact area: the patch may
+  /// continue beyond its grid.
+  bool contact_at_border = false;
   double contact_angle = 0.0;                                 ///< Reference angle δ, rad.
   Eigen::Vector3d reference_T = Eigen::Vector3d::Zero();      ///< Contact reference, track frame.
   Eigen::Vector2d reference_rail = Eigen::Vector2d::Zero();   ///< (y_r, z_r).

@@ -151,7 +151,24 @@ TEST_F(CliResults, ACoarseWheelRailPatchIsAWarning) {
   const Outcome outcome = Solve(text);
   ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
   const std::string warnings = json::parse(outcome.out)["warnings"].dump();
-  EXPECT_NE(warnings.find("elements in contact (fewer than 16)"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("patch 1 has only 1 x 1 elements across it"), std::string::npos)
+      << warnings;
+}
+
+// Coarse along x only: the tread patch (about 12 mm long) gets 2 or 3 columns but
+// a dozen or more rows at ds = 0.1, so more than 16 elements in contact; too few across x is
+// still a warning.
+TEST_F(CliResults, AWheelRailPatchCoarseAlongXOnlyIsAWarning) {
+  std::string text = WheelRail("", kProfiles / "MBench_UIC60_v3.prr");
+  text = std::regex_replace(text, std::regex("dx = 1.0\nds = 1.0"), "dx = 6.0\nds = 0.1");
+  const Outcome outcome = Solve(text);
+  ASSERT_EQ(outcome.exit_code, 0) << outcome.err;
+  const json result = json::parse(outcome.out);
+  ASSERT_EQ(result["patches"].size(), 1u);
+  EXPECT_GE(result["patches"][0]["n_contact"].get<int>(), 16);
+  const std::string warnings = result["warnings"].dump();
+  EXPECT_NE(warnings.find("elements across it (fewer than 4 along x or s)"), std::string::npos)
+      << warnings;
 }
 
 // A rail profile with one point moved back across its neighbour: the zig-zag is repaired, and

@@ -377,7 +377,13 @@ TEST(CaseIo, RejectsOutOfRangeValues) {
   ExpectCaseError(kWheelRailCase, "poisson = 0.28", "poisson = [0.28, 0.3, 0.3]",
                   {"material.poisson", "[rail, wheel]"});
   ExpectCaseError(kWheelRailCase, "shear_modulus = 82000.0", "shear_modulus = 0",
-                  {"material.shear_modulus = 0", "must be positive"});
+                  {"material.shear_modulus = 0", "must be between 0.01 and 1e+07"});
+  // 1e-300 used to end in "arc length nan mm outside the profile", blaming the rail profile.
+  ExpectCaseError(kWheelRailCase, "shear_modulus = 82000.0", "shear_modulus = [82000.0, 1e-300]",
+                  {"material.shear_modulus[1] = 1e-300", "must be between 0.01 and 1e+07"});
+  // A cant of 1e10 rad used to be solved as ok (the angle taken modulo a turn).
+  ExpectCaseError(kWheelRailCase, "gauge_height = 14.0", "gauge_height = 14.0\ncant = 1e10",
+                  {"track.cant = 1e+10", "must be within ±0.2"}, "cant");
   ExpectCaseError(kWheelRailCase, "mu = 0.3", "mu = -0.1",
                   {"friction.mu = -0.1", "must not be negative"});
   ExpectCaseError(kHalfspaceCase, "x = [-3.0, 3.0]", "x = [3.0, -3.0]",

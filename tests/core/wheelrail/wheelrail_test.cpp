@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "wrc/case.h"
@@ -87,6 +88,58 @@ TEST(WheelRail, WarnsWhereTheHalfSpaceIsStrained) {
     }
   }
   EXPECT_EQ(half_space, 1);
+}
+
+int CountContaining(const std::vector<std::string>& warnings, const std::string& text) {
+  int n = 0;
+  for (const std::string& w : warnings) n += w.find(text) != std::string::npos;
+  return n;
+}
+
+// The measured MiniProf rail avg_HR.BAN runs from the field side to the gauge side and needs
+// mirror_y = true. Without it the rail is placed with its field side as the gauge face and the
+// S1002 wheel rests on its flange tip, 27 mm above the nominal position, with status ok and
+// plausible-looking forces: the result must say so. Mirrored as it should be, the first contact
+// at the nominal position is within 1 mm of z = 0 and nothing is said about the placement.
+TEST(WheelRail, MisorientedRailIsAPlacementWarning) {
+  Case c = Manchester(0.0, ReferenceSurface::kCurved);
+  c.rail.path = fs::path(WRC_SHARED_DIR) / "profiles" / "avg_HR.BAN";
+  c.rail.spline.reset();
+  c.rail.mirror_y = false;
+  const WheelRailResult wrong = SolveWheelRail(c);
+  EXPECT_EQ(wrong.status, SolverStatus::kConverged);
+  EXPECT_LT(wrong.z, -20.0);
+  EXPECT_EQ(CountContaining(wrong.warnings, "at the nominal position (y = roll = yaw = 0)"), 1);
+  // From another lateral position too (a second contact search at the nominal position).
+  c.state.y = 5.0;
+  EXPECT_EQ(CountContaining(SolveWheelRail(c).warnings, "at the nominal position"), 1);
+  c.rail.mirror_y = true;
+  const WheelRailResult right = SolveWheelRail(c);
+  EXPECT_GT(right.z, -1.0);
+  EXPECT_LT(right.z, 1.0);
+  EXPECT_EQ(CountContaining(right.warnings, "at the nominal position"), 0);
+}
+
+// A wheel prescribed 1.2 mm into the rail (first contact at 0.27 mm): an interpenetration of
+// about 0.9 mm at the deepest point is under the bound of 1 mm and is solved silently; 1.6 mm
+// (1.3 mm deep) carries some 0.5 MN on a coarse grid and is flagged. pmax there stays below
+// 1e4 N/mm² (tread radii), so only the depth warns.
+TEST(WheelRail, DeepInterpenetrationIsAWarning) {
+  Case c = Manchester(0.0, ReferenceSurface::kPlanar);
+  c.effects.tangential = false;
+  c.grid.dx = c.grid.ds = 1.0;
+  c.state.fz.reset();
+  c.state.z = 1.2;
+  const WheelRailResult shallow = SolveWheelRail(c);
+  ASSERT_EQ(shallow.patches.size(), 1u);
+  EXPECT_LT(shallow.patches[0].approach, 1.0);
+  EXPECT_EQ(CountContaining(shallow.warnings, "interpenetrate"), 0);
+  c.state.z = 1.6;
+  const WheelRailResult deep = SolveWheelRail(c);
+  ASSERT_EQ(deep.patches.size(), 1u);
+  EXPECT_GT(deep.patches[0].approach, 1.0);
+  EXPECT_EQ(CountContaining(deep.warnings, "mm (more than 1 mm, far beyond any wheel load)"), 1);
+  EXPECT_EQ(CountContaining(deep.warnings, "peak pressure"), 0);
 }
 
 // Mirror symmetry: a left wheel at −y, −yaw equals the right wheel at +y, +yaw mirrored (the
