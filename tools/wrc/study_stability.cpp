@@ -347,6 +347,7 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
   study->require_subcommand(1);
   AddCostStudies(*study, exit_code);
+  AddDynamicsStudy(*study, exit_code);
   auto* stability = study->add_subcommand(
       "stability", "Sweep the hard cases (two-point, flange, merging, grooves) and report");
   auto out = std::make_shared<std::string>("docs/stability");
