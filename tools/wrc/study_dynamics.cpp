@@ -12,7 +12,9 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tools/dynamics/analysis.h"
@@ -106,6 +108,7 @@ class TableStudy {
   void SweepTable();
   void BisectTable();
   void RunSolver();
+  void PrepareSolver();
   std::optional<Trajectory> SolverRun(double speed_m_s);
   void CompareAt(double speed_m_s, const Trajectory& solver);
   void WriteSpeedsCsv() const;
@@ -133,6 +136,7 @@ class TableStudy {
   std::vector<Comparison> comparisons_;
   double solver_roll_seconds_ = 0.0;
   long solver_roll_solves_ = 0;
+  std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
 };
 
 Trajectory TableStudy::TableRun(double speed_m_s) {
@@ -178,35 +182,47 @@ void TableStudy::BisectTable() {
   }
 }
 
+void TableStudy::PrepareSolver() {
+  if (solver_forces_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  solver_forces_ = std::make_unique<dynamics::SolverForces>(stored_->scene.base, geometry_);
+  solver_roll_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  solver_roll_solves_ = solver_forces_->solves();
+}
+
+// A solver run on its own copy of the solver source (the copies share the roll curve, each
+// warm-starts its own wheelset heights), so that runs may go on separate threads.
 std::optional<Trajectory> TableStudy::SolverRun(double speed_m_s) {
-  if (!solver_forces_) {
-    const auto t0 = std::chrono::steady_clock::now();
-    solver_forces_ = std::make_unique<dynamics::SolverForces>(stored_->scene.base, geometry_);
-    solver_roll_seconds_ =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    solver_roll_solves_ = solver_forces_->solves();
-  }
-  const dynamics::ForceSource source = [this](const dynamics::State& s, double v) {
-    return (*solver_forces_)(s, v);
+  PrepareSolver();
+  auto forces = std::make_shared<dynamics::SolverForces>(*solver_forces_);
+  const dynamics::ForceSource source = [forces](const dynamics::State& s, double v) {
+    return (*forces)(s, v);
   };
-  std::cerr << "wrc study dynamics: solver, " << speed_m_s << " m/s ...\n";
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::cerr << "wrc study dynamics: solver, " << speed_m_s << " m/s ...\n";
+  }
   Row row{"solver", speed_m_s, {}, 0, 0.0, 0, ""};
+  std::optional<Trajectory> result;
   try {
     Trajectory run = dynamics::Simulate(parameters_, source, 1000.0 * speed_m_s);
-    solver_cost_.Add(run, parameters_.time_step);
     row.hunting = dynamics::MeasureHunting(run, kSettle);
     row.seconds = run.seconds;
     row.steps = run.steps;
-    rows_.push_back(row);
-    return run;
+    result = std::move(run);
   } catch (const InputError& e) {
     row.failure = e.what();
     row.hunting.growth_rate = row.hunting.frequency = NAN;
-    rows_.push_back(row);
-    std::cerr << "wrc study dynamics: warning: solver run at " << speed_m_s
-              << " m/s stopped: " << e.what() << "\n";
-    return std::nullopt;
   }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (result) solver_cost_.Add(*result, parameters_.time_step);
+  if (!row.failure.empty()) {
+    std::cerr << "wrc study dynamics: warning: solver run at " << speed_m_s
+              << " m/s stopped: " << row.failure << "\n";
+  }
+  rows_.push_back(row);
+  return result;
 }
 
 // Trajectories of both sources at one speed: CSV, PNG and their differences.
@@ -251,11 +267,18 @@ void TableStudy::RunSolver() {
   }
   // (speed, growth rate) of the solver runs, for its own critical speed.
   std::vector<std::pair<double, double>> rates;
-  for (double v : speeds) {
-    const std::optional<Trajectory> run = SolverRun(v);
-    if (!run) continue;
-    CompareAt(v, *run);
-    rates.emplace_back(v, rows_.back().hunting.growth_rate);
+  // The first runs side by side, one thread each: a solver run is hundreds of CPU seconds.
+  PrepareSolver();
+  std::vector<std::optional<Trajectory>> runs(speeds.size());
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < speeds.size(); ++k) {
+    threads.emplace_back([this, &runs, &speeds, k]() { runs[k] = SolverRun(speeds[k]); });
+  }
+  for (std::thread& t : threads) t.join();
+  for (std::size_t k = 0; k < speeds.size(); ++k) {
+    if (!runs[k]) continue;
+    CompareAt(speeds[k], *runs[k]);
+    rates.emplace_back(speeds[k], dynamics::MeasureHunting(*runs[k], kSettle).growth_rate);
   }
   // Bisection with the solver inside the bracket its own runs give; then linear in the rate.
   const auto bracket =
@@ -275,6 +298,7 @@ void TableStudy::RunSolver() {
     if (!run) break;
     const Row& row = rows_.back();
     rates.emplace_back(mid, row.hunting.growth_rate);
+    CompareAt(mid, *run);
   }
   if (const auto b = bracket()) {
     const auto [lo, hi] = *b;
