@@ -10,9 +10,9 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
