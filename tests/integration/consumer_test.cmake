@@ -6,6 +6,8 @@
 #                  (C, CXX or C+CXX) against the package in PACKAGE_DIR (an install prefix,
 #                  or the build tree), linking the VARIANT (static or shared) runtime, in WORK_DIR;
 #                  each executable reads TABLE and checks a value.
+#   MODE=example   builds runtime/examples/wheelset_dynamics.c (EXAMPLE) with the project in
+#                  example/ against PACKAGE_DIR in WORK_DIR and runs it on the wheelset TABLE.
 #   MODE=python    installs the python component into PYTHON_PREFIX (emptied first) and has PYTHON
 #                  import the installed module from there and check the same value.
 cmake_minimum_required(VERSION 3.22)
@@ -106,12 +108,30 @@ function(install_python)
   message(STATUS "${run_output}")
 endfunction()
 
+# The example simulates 2 s and reports its cost; on the synthetic table (affine forces, no
+# roll) it must run to the end without a clamped state.
+function(build_example)
+  file(REMOVE_RECURSE ${WORK_DIR})
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/example -B ${WORK_DIR} -G ${GENERATOR}
+      -DCMAKE_PREFIX_PATH=${PACKAGE_DIR} -DEXAMPLE=${EXAMPLE} -DCMAKE_BUILD_TYPE=Release)
+  run(${CMAKE_COMMAND} --build ${WORK_DIR})
+  run(${WORK_DIR}/wheelset_dynamics ${TABLE} 30 10000)
+  if(NOT run_output MATCHES "\n2\.000 [-0-9.e]+ [-0-9.e+]+\n" OR
+     NOT run_output MATCHES "times real time" OR run_output MATCHES "clamped")
+    message(FATAL_ERROR "wheelset_dynamics did not run through 2 s:\n${run_output}")
+  endif()
+  check_linkage(${WORK_DIR}/wheelset_dynamics)
+  message(STATUS "${run_output}")
+endfunction()
+
 if(MODE STREQUAL "install")
   install_runtime()
 elseif(MODE STREQUAL "consumer")
   build_consumer()
+elseif(MODE STREQUAL "example")
+  build_example()
 elseif(MODE STREQUAL "python")
   install_python()
 else()
-  message(FATAL_ERROR "MODE must be install, consumer or python, not '${MODE}'")
+  message(FATAL_ERROR "MODE must be install, consumer, example or python, not '${MODE}'")
 endif()

@@ -24,6 +24,9 @@ void AddVerifyCommand(CLI::App& app, int* exit_code);
 /// Adds `solver` and `tables` (accuracy against cost) to `wrc study`.
 void AddCostStudies(CLI::App& study, int* exit_code);
 
+/// Adds `dynamics` (a wheelset on table and on solver forces) to `wrc study`.
+void AddDynamicsStudy(CLI::App& study, int* exit_code);
+
 /// Registers `wrc study` (stability, solver accuracy against cost).
 void AddStudyCommand(CLI::App& app, int* exit_code);
 

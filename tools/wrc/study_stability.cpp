@@ -571,6 +571,7 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   study->require_subcommand(1);
   AddCostStudies(*study, exit_code);
   AddStabilityStudy(*study, exit_code);
+  AddDynamicsStudy(*study, exit_code);
 }
 
 }  // namespace wrc::cli

@@ -1,0 +1,470 @@
+// `wrc study dynamics TABLE.h5... --out DIR`: a wheelset simulated with its contact forces from
+// the table and from full solves (tools/dynamics): trajectories, hunting frequency and growth
+// rate against speed, critical speeds, and what each costs.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tools/dynamics/analysis.h"
+#include "tools/dynamics/forces.h"
+#include "tools/dynamics/model.h"
+#include "tools/wrc/commands.h"
+#include "tools/wrc/verify.h"
+#include "wrc/errors.h"
+#include "wrc/runtime.hpp"
+
+namespace wrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using dynamics::Hunting;
+using dynamics::Parameters;
+using dynamics::Trajectory;
+
+struct DynamicsOptions {
+  std::vector<std::string> tables;
+  std::string out = "docs/dynamics";
+  std::string model = "tables/wheelset_dynamics.toml";
+  std::vector<double> speeds;         // m/s, table sweep
+  std::vector<double> solver_speeds;  // m/s; empty: 0.8 and 1.2 times the table's critical speed
+  int solver_bisections = 2;
+  bool no_solver = false;
+  double tolerance = 0.05;  // m/s, of the table's bisection
+};
+
+// Extrema before this are the transient of the initial disturbance, not hunting.
+constexpr double kSettle = 0.1;  // s
+
+// One run of one source at one speed.
+struct Row {
+  std::string source;
+  double speed = 0.0;  // m/s
+  Hunting hunting;
+  int flags = 0;
+  double seconds = 0.0;
+  int steps = 0;
+  std::string failure;  // why a solver run stopped
+};
+
+std::string Fixed(double v, int digits) {
+  if (std::isnan(v)) return "–";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
+  return buffer;
+}
+
+std::string FlagNames(int flags) {
+  std::string s;
+  if (flags & WRC_FLAG_CLAMPED) s += "clamped ";
+  if (flags & WRC_FLAG_STATUS) s += "status ";
+  if (flags & WRC_FLAG_FIXED) s += "fixed ";
+  if (s.empty()) return "–";
+  s.pop_back();
+  return s;
+}
+
+// Sum of wall time and steps of a source's runs: cost per step and real-time factor.
+struct Cost {
+  double seconds = 0.0, cpu_seconds = 0.0, simulated = 0.0;
+  long steps = 0;
+  void Add(const Trajectory& run, double dt) {
+    seconds += run.seconds;
+    cpu_seconds += run.cpu_seconds;
+    steps += run.steps;
+    simulated += run.steps * dt;
+  }
+};
+
+// ---- the study of one table ---------------------------------------------------------------
+
+class TableStudy {
+ public:
+  TableStudy(const DynamicsOptions& options, const fs::path& table_path, const fs::path& out)
+      : options_(options), out_(out), table_(table_path.string()) {
+    parameters_ = dynamics::LoadParameters(options.model);
+    stored_ = LoadStoredScene(table_path);
+    geometry_ = dynamics::SceneGeometry(stored_->scene.base, parameters_.wheel_load);
+    table_forces_ = std::make_unique<dynamics::TableForces>(table_, geometry_);
+    table_name_ = table_path.filename().string();
+  }
+
+  int Run();
+
+ private:
+  Trajectory TableRun(double speed_m_s);
+  double TableRate(double speed_m_s);
+  void SweepTable();
+  void BisectTable();
+  void RunSolver();
+  void PrepareSolver();
+  std::optional<Trajectory> SolverRun(double speed_m_s);
+  void CompareAt(double speed_m_s, const Trajectory& solver);
+  void WriteSpeedsCsv() const;
+  void WriteHuntingPlot() const;
+  void WriteSummary() const;
+
+  const DynamicsOptions& options_;
+  fs::path out_;
+  wrc::Table table_;
+  std::unique_ptr<StoredScene> stored_;
+  Parameters parameters_;
+  dynamics::ContactGeometry geometry_;
+  std::unique_ptr<dynamics::TableForces> table_forces_;
+  std::unique_ptr<dynamics::SolverForces> solver_forces_;
+  std::string table_name_;
+  std::vector<Row> rows_;
+  Cost table_cost_, solver_cost_;
+  double table_critical_ = NAN, solver_critical_ = NAN;
+  int table_bisections_ = 0;
+  struct Comparison {
+    double speed;
+    dynamics::RunDifference d;
+    Hunting table, solver;
+  };
+  std::vector<Comparison> comparisons_;
+  double solver_roll_seconds_ = 0.0;
+  long solver_roll_solves_ = 0;
+  std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
+};
+
+Trajectory TableStudy::TableRun(double speed_m_s) {
+  const dynamics::ForceSource source = [this](const dynamics::State& s, double v) {
+    return (*table_forces_)(s, v);
+  };
+  Trajectory run = dynamics::Simulate(parameters_, source, 1000.0 * speed_m_s);
+  table_cost_.Add(run, parameters_.time_step);
+  return run;
+}
+
+double TableStudy::TableRate(double speed_m_s) {
+  const Trajectory run = TableRun(speed_m_s);
+  Row row{"table",   speed_m_s, dynamics::MeasureHunting(run, kSettle), run.flags, run.seconds,
+          run.steps, ""};
+  rows_.push_back(row);
+  return row.hunting.growth_rate;
+}
+
+void TableStudy::SweepTable() {
+  for (double v : options_.speeds) {
+    TableRate(v);
+    std::cerr << "wrc study dynamics: table, " << v << " m/s: growth "
+              << Fixed(rows_.back().hunting.growth_rate, 3) << " 1/s\n";
+  }
+}
+
+// Bisection on V between the first pair of sweep speeds where decay turns into growth.
+void TableStudy::BisectTable() {
+  std::vector<Row> sweep = rows_;
+  std::sort(sweep.begin(), sweep.end(),
+            [](const Row& a, const Row& b) { return a.speed < b.speed; });
+  for (std::size_t i = 0; i + 1 < sweep.size(); ++i) {
+    if (!(sweep[i].hunting.growth_rate < 0.0 && sweep[i + 1].hunting.growth_rate >= 0.0)) continue;
+    double lo = sweep[i].speed, hi = sweep[i + 1].speed;
+    while (hi - lo > options_.tolerance) {
+      const double mid = 0.5 * (lo + hi);
+      (TableRate(mid) < 0.0 ? lo : hi) = mid;
+      ++table_bisections_;
+    }
+    table_critical_ = 0.5 * (lo + hi);
+    return;
+  }
+}
+
+void TableStudy::PrepareSolver() {
+  if (solver_forces_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  solver_forces_ = std::make_unique<dynamics::SolverForces>(stored_->scene.base, geometry_);
+  solver_roll_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  solver_roll_solves_ = solver_forces_->solves();
+}
+
+// A solver run on its own copy of the solver source (the copies share the roll curve, each
+// warm-starts its own wheelset heights), so that runs may go on separate threads.
+std::optional<Trajectory> TableStudy::SolverRun(double speed_m_s) {
+  PrepareSolver();
+  auto forces = std::make_shared<dynamics::SolverForces>(*solver_forces_);
+  const dynamics::ForceSource source = [forces](const dynamics::State& s, double v) {
+    return (*forces)(s, v);
+  };
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::cerr << "wrc study dynamics: solver, " << speed_m_s << " m/s ...\n";
+  }
+  Row row{"solver", speed_m_s, {}, 0, 0.0, 0, ""};
+  std::optional<Trajectory> result;
+  try {
+    Trajectory run = dynamics::Simulate(parameters_, source, 1000.0 * speed_m_s);
+    row.hunting = dynamics::MeasureHunting(run, kSettle);
+    row.seconds = run.seconds;
+    row.steps = run.steps;
+    result = std::move(run);
+  } catch (const InputError& e) {
+    row.failure = e.what();
+    row.hunting.growth_rate = row.hunting.frequency = NAN;
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (result) solver_cost_.Add(*result, parameters_.time_step);
+  if (!row.failure.empty()) {
+    std::cerr << "wrc study dynamics: warning: solver run at " << speed_m_s
+              << " m/s stopped: " << row.failure << "\n";
+  }
+  rows_.push_back(row);
+  return result;
+}
+
+// Trajectories of both sources at one speed: CSV, PNG and their differences.
+void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
+  const Trajectory table = TableRun(speed_m_s);
+  comparisons_.push_back({speed_m_s, dynamics::CompareRuns(table, solver, kSettle),
+                          dynamics::MeasureHunting(table, kSettle),
+                          dynamics::MeasureHunting(solver, kSettle)});
+  const std::string stem = "run_" + Fixed(speed_m_s, 1) + "ms";
+  std::ofstream csv(out_ / (stem + ".csv"));
+  csv << "t_s,y_table_mm,yaw_table_rad,y_solver_mm,yaw_solver_rad\n";
+  csv.precision(9);
+  for (std::size_t i = 0; i < table.t.size() && i < solver.t.size(); ++i) {
+    csv << table.t[i] << ',' << table.y[i] << ',' << table.yaw[i] << ',' << solver.y[i] << ','
+        << solver.yaw[i] << '\n';
+  }
+  csv.close();
+  std::ofstream gp(out_ / (stem + ".gp"));
+  gp << "set terminal pngcairo size 1000,700 font ',10'\nset output '" << stem << ".png'\n"
+     << "set datafile separator ','\nset multiplot layout 2,1 title 'Wheelset at "
+     << Fixed(speed_m_s, 1) << " m/s (" << table_name_
+     << "): forces from the table and from full solves' noenhanced\n"
+     << "set grid\nset xlabel 't, s'\nset ylabel 'y, mm'\n"
+     << "plot '" << stem
+     << ".csv' skip 1 using 1:2 with lines lw 2 title 'table', '' skip 1 using 1:4 with lines dt 2 "
+        "lw 2 title 'solver'\n"
+     << "set ylabel 'yaw, mrad'\n"
+     << "plot '" << stem
+     << ".csv' skip 1 using 1:($3*1000) with lines lw 2 title 'table', '' skip 1 using 1:($5*1000) "
+        "with lines dt 2 lw 2 title 'solver'\n"
+     << "unset multiplot\n";
+  gp.close();
+  if (std::system(("cd '" + out_.string() + "' && gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0) {
+    std::cerr << "wrc study dynamics: gnuplot failed for " << stem << ".gp\n";
+  }
+}
+
+void TableStudy::RunSolver() {
+  std::vector<double> speeds = options_.solver_speeds;
+  if (speeds.empty() && !std::isnan(table_critical_)) {
+    speeds = {std::round(0.8 * table_critical_), std::round(1.2 * table_critical_)};
+  }
+  // (speed, growth rate) of the solver runs, for its own critical speed.
+  std::vector<std::pair<double, double>> rates;
+  // The first runs side by side, one thread each: a solver run is hundreds of CPU seconds.
+  PrepareSolver();
+  std::vector<std::optional<Trajectory>> runs(speeds.size());
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < speeds.size(); ++k) {
+    threads.emplace_back([this, &runs, &speeds, k]() { runs[k] = SolverRun(speeds[k]); });
+  }
+  for (std::thread& t : threads) t.join();
+  for (std::size_t k = 0; k < speeds.size(); ++k) {
+    if (!runs[k]) continue;
+    CompareAt(speeds[k], *runs[k]);
+    rates.emplace_back(speeds[k], dynamics::MeasureHunting(*runs[k], kSettle).growth_rate);
+  }
+  // Bisection with the solver inside the bracket its own runs give; then linear in the rate.
+  const auto bracket =
+      [&]() -> std::optional<std::pair<std::pair<double, double>, std::pair<double, double>>> {
+    std::sort(rates.begin(), rates.end());
+    for (std::size_t i = 0; i + 1 < rates.size(); ++i) {
+      if (rates[i].second < 0.0 && rates[i + 1].second >= 0.0)
+        return std::pair{rates[i], rates[i + 1]};
+    }
+    return std::nullopt;
+  };
+  for (int k = 0; k < options_.solver_bisections; ++k) {
+    const auto b = bracket();
+    if (!b) break;
+    const double mid = 0.5 * (b->first.first + b->second.first);
+    const std::optional<Trajectory> run = SolverRun(mid);
+    if (!run) break;
+    const Row& row = rows_.back();
+    rates.emplace_back(mid, row.hunting.growth_rate);
+    CompareAt(mid, *run);
+  }
+  if (const auto b = bracket()) {
+    const auto [lo, hi] = *b;
+    solver_critical_ = lo.first + (hi.first - lo.first) * (-lo.second) / (hi.second - lo.second);
+  }
+}
+
+void TableStudy::WriteSpeedsCsv() const {
+  std::ofstream csv(out_ / "speeds.csv");
+  csv << "source,speed_m_s,frequency_hz,growth_rate_1_s,max_abs_y_mm,flags,seconds,steps\n";
+  csv.precision(8);
+  for (const std::string source : {"table", "solver"}) {
+    std::vector<Row> rows;
+    for (const Row& r : rows_)
+      if (r.source == source && r.failure.empty()) rows.push_back(r);
+    std::sort(rows.begin(), rows.end(),
+              [](const Row& a, const Row& b) { return a.speed < b.speed; });
+    for (const Row& r : rows) {
+      csv << r.source << ',' << r.speed << ',' << r.hunting.frequency << ','
+          << r.hunting.growth_rate << ',' << r.hunting.max_abs_y << ',' << r.flags << ','
+          << r.seconds << ',' << r.steps << '\n';
+    }
+  }
+}
+
+void TableStudy::WriteHuntingPlot() const {
+  std::ofstream gp(out_ / "hunting.gp");
+  gp << "set terminal pngcairo size 1000,700 font ',10'\nset output 'hunting.png'\n"
+     << "set datafile separator ','\nset grid\nset key left top\n"
+     << "set multiplot layout 2,1 title 'Hunting against speed (" << table_name_
+     << ")' noenhanced\n"
+     << "set xlabel 'V, m/s'\nset ylabel 'growth rate, 1/s'\n"
+     << "plot 'speeds.csv' using (strcol(1) eq 'table' ? $2 : 1/0):4 with linespoints pt 7 title "
+        "'table', "
+        "'' using (strcol(1) eq 'solver' ? $2 : 1/0):4 with points pt 5 ps 1.5 title 'solver', 0 "
+        "notitle lc 'black'\n"
+     << "set ylabel 'frequency, Hz'\n"
+     << "plot 'speeds.csv' using (strcol(1) eq 'table' ? $2 : 1/0):3 with linespoints pt 7 title "
+        "'table', "
+        "'' using (strcol(1) eq 'solver' ? $2 : 1/0):3 with points pt 5 ps 1.5 title 'solver'\n"
+     << "unset multiplot\n";
+  gp.close();
+  if (std::system(("cd '" + out_.string() + "' && gnuplot hunting.gp 2>&1").c_str()) != 0) {
+    std::cerr << "wrc study dynamics: gnuplot failed for hunting.gp\n";
+  }
+}
+
+void TableStudy::WriteSummary() const {
+  std::ofstream md(out_ / "README.md");
+  const Parameters& p = parameters_;
+  md << "# Wheelset dynamics on " << table_name_ << "\n\n"
+     << "Generated by `wrc study dynamics " << table_name_ << " --model " << options_.model
+     << "`. Wheelset " << p.mass << " kg, yaw inertia " << p.yaw_inertia << " kg·m², wheel load "
+     << p.wheel_load << " N; primary suspension per axlebox " << p.lateral_stiffness
+     << " N/mm lateral, " << p.longitudinal_stiffness << " N/mm longitudinal at ±"
+     << p.spring_semi_spacing << " mm; RK4 at " << 1.0 / p.time_step << " Hz over " << p.duration
+     << " s from y = " << p.initial_y << " mm.\n\n";
+  md << "## Critical speed\n\n| source | critical speed, m/s | how |\n|---|---|---|\n"
+     << "| table | " << Fixed(table_critical_, 2) << " | bisection on V, " << table_bisections_
+     << " runs after the sweep, to " << options_.tolerance << " m/s |\n"
+     << "| solver | " << Fixed(solver_critical_, 2)
+     << " | growth rate interpolated linearly between the solver runs that bracket zero |\n"
+     << "| difference | " << Fixed(solver_critical_ - table_critical_, 2) << " | |\n\n";
+  md << "## Trajectories, table against solver\n\n| V, m/s | f table, Hz | f solver, Hz | growth "
+        "table, 1/s | growth solver, 1/s | max abs Δy, mm | max abs Δψ, mrad | phase lag, ° | plot "
+        "|\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const Comparison& c : comparisons_) {
+    const std::string stem = "run_" + Fixed(c.speed, 1) + "ms";
+    md << "| " << Fixed(c.speed, 1) << " | " << Fixed(c.table.frequency, 3) << " | "
+       << Fixed(c.solver.frequency, 3) << " | " << Fixed(c.table.growth_rate, 3) << " | "
+       << Fixed(c.solver.growth_rate, 3) << " | " << Fixed(c.d.max_dy, 3) << " | "
+       << Fixed(1e3 * c.d.max_dyaw, 3) << " | " << Fixed(c.d.phase_deg, 1) << " | [" << stem
+       << ".png](" << stem << ".png) |\n";
+  }
+  md << "\n## All runs\n\n| source | V, m/s | frequency, Hz | growth rate, 1/s | max abs y, mm | "
+        "table flags | wall s |\n|---|---|---|---|---|---|---|\n";
+  std::vector<Row> rows = rows_;
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    return a.source != b.source ? a.source > b.source : a.speed < b.speed;
+  });
+  for (const Row& r : rows) {
+    md << "| " << r.source << " | " << Fixed(r.speed, 2) << " | " << Fixed(r.hunting.frequency, 3)
+       << " | " << Fixed(r.hunting.growth_rate, 3) << " | " << Fixed(r.hunting.max_abs_y, 3)
+       << " | " << (r.source == "table" ? FlagNames(r.flags) : "") << " | "
+       << (r.failure.empty() ? Fixed(r.seconds, 3) : "stopped: " + r.failure) << " |\n";
+  }
+  md << "\n## Cost\n\nOne thread. CPU time is what the runs cost on one core; the wall time also "
+        "counts the time they waited for a core on a shared machine.\n\n"
+     << "| source | simulated, s | CPU s | wall s | CPU µs per step | real-time factor (CPU) | "
+        "CPU s per simulated s |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& [name, cost] :
+       {std::pair{"table", table_cost_}, std::pair{"solver", solver_cost_}}) {
+    if (cost.steps == 0) continue;
+    const double factor = cost.simulated / cost.cpu_seconds;
+    md << "| " << name << " | " << Fixed(cost.simulated, 1) << " | " << Fixed(cost.cpu_seconds, 3)
+       << " | " << Fixed(cost.seconds, 3) << " | " << Fixed(1e6 * cost.cpu_seconds / cost.steps, 2)
+       << " | " << Fixed(factor, factor < 10 ? 4 : 0) << " | "
+       << Fixed(cost.cpu_seconds / cost.simulated, 4) << " |\n";
+  }
+  if (solver_forces_) {
+    md << "\nThe solver's roll curve took " << solver_roll_solves_ << " solves ("
+       << Fixed(solver_roll_seconds_, 1) << " s). ";
+  }
+  md << "Roll curve of the table: " << table_forces_->roll_curve().clamped() << " of its "
+     << table_forces_->roll_curve().y().size()
+     << " points at the end of the roll axis.\n\n![hunting](hunting.png)\n";
+}
+
+int TableStudy::Run() {
+  fs::create_directories(out_);
+  SweepTable();
+  BisectTable();
+  if (!options_.no_solver) RunSolver();
+  WriteSpeedsCsv();
+  WriteHuntingPlot();
+  WriteSummary();
+  std::cerr << "wrc study dynamics: critical speed " << Fixed(table_critical_, 2)
+            << " m/s (table), " << Fixed(solver_critical_, 2) << " m/s (solver); wrote "
+            << (out_ / "README.md").string() << "\n";
+  return kExitOk;
+}
+
+int RunDynamicsStudy(const DynamicsOptions& options) {
+  for (const std::string& table : options.tables) {
+    const fs::path out = options.tables.size() == 1
+                             ? fs::path(options.out)
+                             : fs::path(options.out) / fs::path(table).stem();
+    TableStudy(options, table, out).Run();
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddDynamicsStudy(CLI::App& study, int* exit_code) {
+  auto* cmd = study.add_subcommand(
+      "dynamics", "A wheelset simulated with forces from the table and from full solves");
+  auto options = std::make_shared<DynamicsOptions>();
+  options->speeds = {10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120};
+  cmd->add_option("tables", options->tables, "Tables (TABLE.h5) of one wheel with a z output")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", options->out, "Output directory (CSV, PNG, README.md)");
+  cmd->add_option("--model", options->model, "Wheelset parameter file (TOML)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--speeds", options->speeds, "Speeds of the table sweep, m/s")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--solver-speeds", options->solver_speeds,
+                  "Speeds of the solver runs, m/s (default: 0.8 and 1.2 times the table's "
+                  "critical speed)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--solver-bisections", options->solver_bisections,
+                  "Solver runs that narrow its critical speed")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-solver", options->no_solver, "Table runs only");
+  cmd->callback([options, exit_code]() {
+    try {
+      *exit_code = RunDynamicsStudy(*options);
+    } catch (const std::exception& e) {
+      std::cerr << "wrc study dynamics: error: " << e.what() << "\n";
+      *exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace wrc::cli
