@@ -67,6 +67,9 @@ LateralOrientation JudgeWheel(const std::vector<double>& y, const std::vector<do
   for (std::size_t i = 1; i < y.size(); ++i) {
     if (std::abs(y[i] - middle) < std::abs(y[centre] - middle)) centre = i;
   }
+  if (tip == 0 || tip + 1 == z.size()) {
+    return {LateralVerdict::kUndecided, "the lowest point is an end of the profile, no flange"};
+  }
   const double height = z[tip] - z[centre];
   if (height < kMinFlangeHeight) {
     return {LateralVerdict::kUndecided, "no flange: the lowest point is only " + Mm(height) +

@@ -102,11 +102,13 @@ TEST(ProfileOrientation, SymmetricAndFlangelessProfilesAreUndecided) {
   for (int i = 0; i <= 60; ++i) {
     const double angle = -1.0 + 2.0 * i / 60.0;
     y.push_back(50.0 * std::sin(angle));
-    z.push_back(50.0 - 50.0 * std::cos(angle));
+    z.push_back(50.0 * std::cos(angle) - 50.0);  // z down: lowest in the middle
   }
   EXPECT_EQ(JudgeLateralOrientation(y, z, ProfileKind::kWheel).verdict, LateralVerdict::kUndecided);
-  for (double& value : z) value = -value;  // now a rail head, both sides equally deep
+  for (double& value : z) value = -value;  // a rail head, both sides equally deep
   EXPECT_EQ(JudgeLateralOrientation(y, z, ProfileKind::kRail).verdict, LateralVerdict::kUndecided);
+  // The same curve as a wheel has its lowest points at the ends: no flange either.
+  EXPECT_EQ(JudgeLateralOrientation(y, z, ProfileKind::kWheel).verdict, LateralVerdict::kUndecided);
 }
 
 TEST(ProfileOrientation, MetresAreRecognisedAndScaled) {
