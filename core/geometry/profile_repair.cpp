@@ -458,7 +458,11 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     profile.mirrored_z = !profile.mirrored_z;
   }
   if (options.mirror_z != MirrorZ::kAuto) CheckZOrientation(points, kind, flip_z, source, profile);
-  OrientLaterally(points, kind, options, source, profile, warnings);
+  // Upside down, the rail's deep side and the wheel's flange are not what they seem: the
+  // lateral judgement would name the wrong key.
+  if (profile.orientation_doubts.empty()) {
+    OrientLaterally(points, kind, options, source, profile, warnings);
+  }
 
   // 2. Repeated points (a zero-length segment has no direction).
   RemoveDuplicates(points, source, warnings);

@@ -84,6 +84,7 @@ TEST(MiniProfPair, UpsideDownRailIsRefusedNamingTheFix) {
   const std::string error = ErrorOf(MiniProfCase(0.0, "mirror_y = true\nmirror_z = false"));
   EXPECT_NE(error.find("looks upside down"), std::string::npos) << error;
   EXPECT_NE(error.find("set mirror_z = true"), std::string::npos) << error;
+  EXPECT_EQ(error.find("set mirror_y"), std::string::npos) << error;  // y is right already
 }
 
 TEST(MiniProfPair, SimpackFlangeBackPositionIsRefusedNamingTheFix) {
