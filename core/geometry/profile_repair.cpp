@@ -93,18 +93,102 @@ int EndFaceVote(const std::vector<Point>& points, std::size_t first, int step, P
   return outward_down == (kind == ProfileKind::kRail) ? 1 : -1;
 }
 
-/// Decides MirrorZ::kAuto: true when z must be mirrored. Adds a warning when undecided.
+/// The side faces' vote on the z orientation of `points` as they stand: > 0 right way up,
+/// < 0 upside down, 0 undecided.
+int SideFaceVotes(const std::vector<Point>& points, ProfileKind kind) {
+  return EndFaceVote(points, 0, +1, kind) + EndFaceVote(points, points.size() - 1, -1, kind);
+}
+
+/// The evidence behind a vote, for messages.
+std::string SideFaceReason(int votes, ProfileKind kind) {
+  const std::string expected =
+      kind == ProfileKind::kRail ? "a rail's run downwards (+z)" : "a wheel's run upwards (−z)";
+  if (votes > 0) return "its end faces point the way " + expected;
+  return "its end faces point against the way " + expected;
+}
+
+/// Decides MirrorZ::kAuto: true when z must be mirrored. Adds a warning when undecided, and
+/// one with the decision when asked to report it.
 bool AutoMirrorZ(const std::vector<Point>& points, ProfileKind kind, const std::string& source,
-                 std::vector<std::string>& warnings) {
+                 bool report, std::vector<std::string>& warnings) {
   const int first = EndFaceVote(points, 0, +1, kind);
-  const int last = EndFaceVote(points, points.size() - 1, -1, kind);
-  const int votes = first + last;
-  if (votes != 0) return votes < 0;
+  const int votes = SideFaceVotes(points, kind);
+  if (votes != 0) {
+    if (report) {
+      warnings.push_back(source + ": mirror_z = \"auto\": z " +
+                         (votes < 0 ? "mirrored" : "used as given") + " (" +
+                         SideFaceReason(votes, kind) + ")");
+    }
+    return votes < 0;
+  }
   const std::string reason = first == 0 ? "neither end has a side face steeper than 30°"
                                         : "the two end faces point different ways";
   warnings.push_back(source + ": cannot detect the z orientation of the " + KindName(kind) +
                      " profile (" + reason + "); z is used as given (set mirror_z to decide)");
   return false;
+}
+
+/// A warning that the orientation looks wrong, also kept apart for error messages.
+void AddDoubt(Profile& profile, std::string message) {
+  profile.orientation_doubts.push_back(message);
+  profile.warnings.push_back(std::move(message));
+}
+
+/// For an explicit mirror_z: warns when the side faces say the result is upside down.
+void CheckZOrientation(const std::vector<Point>& points, ProfileKind kind, bool mirrored,
+                       const std::string& source, Profile& profile) {
+  const int votes = SideFaceVotes(points, kind);
+  if (votes >= 0) return;
+  AddDoubt(profile, source + ": the " + KindName(kind) + " profile looks upside down (" +
+                        SideFaceReason(votes, kind) +
+                        "): set mirror_z = " + (mirrored ? "false" : "true") + " (or \"auto\")");
+}
+
+/// Mirrors y when detect_mirror_y says so, or warns when the shape contradicts mirror_y.
+/// `points` have z the right way up already.
+void OrientLaterally(std::vector<Point>& points, ProfileKind kind, const ProfileOptions& options,
+                     const std::string& source, Profile& profile,
+                     std::vector<std::string>& warnings) {
+  std::vector<double> y(points.size()), z(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    y[i] = points[i].y;
+    z[i] = points[i].z;
+  }
+  const LateralOrientation judged = JudgeLateralOrientation(y, z, kind);
+  const bool mirrored = judged.verdict == LateralVerdict::kMirrored;
+  if (!options.detect_mirror_y) {
+    if (!mirrored) return;
+    AddDoubt(profile, source + ": the " + KindName(kind) +
+                          " profile looks mirrored in y, field side and track-centre side "
+                          "swapped (" +
+                          judged.reason + "): set mirror_y = " +
+                          (options.mirror_y ? "false" : "true") + " (or \"auto\")");
+    return;
+  }
+  if (mirrored) {
+    for (Point& p : points) p.y = -p.y;
+    profile.mirrored_y = !profile.mirrored_y;
+  }
+  if (judged.verdict == LateralVerdict::kUndecided) {
+    warnings.push_back(source + ": mirror_y = \"auto\" cannot tell the side of the " +
+                       KindName(kind) + " profile (" + judged.reason +
+                       "); y is used as given (set mirror_y to decide)");
+  } else if (options.report_orientation) {
+    warnings.push_back(source + ": mirror_y = \"auto\": y " +
+                       (mirrored ? "mirrored" : "used as given") + " (" + judged.reason + ")");
+  }
+}
+
+/// The length check's message, with the scale that would bring a metre file into range.
+std::string LengthProblem(const std::string& source, double length) {
+  std::string message = source + ": profile length " + Format("%.6g", length) +
+                        " mm is outside [5, 500] mm (CONTACT's limits); are the units mm?";
+  if (length * 1000.0 >= kMinProfileLength && length * 1000.0 <= kMaxProfileLength) {
+    message += " The values look like metres: set scale_yz = 1000";
+  } else if (length / 1000.0 >= kMinProfileLength && length / 1000.0 <= kMaxProfileLength) {
+    message += " The values look like micrometres: set scale_yz = 0.001";
+  }
+  return message;
 }
 
 /// Drops points equal to (within kRepeatDistance of) their predecessor.
@@ -327,6 +411,10 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     throw InputError(source + ": kink_width " + FormatNumber(options.kink_width) +
                      " mm must be a finite number >= 0");
   }
+  if (!(options.scale_yz > 0.0) || !std::isfinite(options.scale_yz)) {
+    throw InputError(source + ": scale_yz " + FormatNumber(options.scale_yz) +
+                     " must be a finite number > 0");
+  }
   if (input.y.size() != input.z.size() || input.y.size() != input.lines.size()) {
     throw InputError(source + ": y, z and line arrays differ in size");
   }
@@ -350,16 +438,30 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
   const int last_line = input.lines.empty() ? 1 : input.lines.back();
   RequireEnoughPoints(points, source, last_line, "");
 
-  // 1. Mirroring.
-  if (options.mirror_y) {
+  // 1. Units and mirroring: z first, since judging the lateral side needs z the right way up.
+  if (options.scale_yz != 1.0) {
+    for (Point& p : points) {
+      p.y *= options.scale_yz;
+      p.z *= options.scale_yz;
+    }
+  }
+  if (options.mirror_y && !options.detect_mirror_y) {
     for (Point& p : points) p.y = -p.y;
     profile.mirrored_y = !profile.mirrored_y;
   }
   bool flip_z = options.mirror_z == MirrorZ::kYes;
-  if (options.mirror_z == MirrorZ::kAuto) flip_z = AutoMirrorZ(points, kind, source, warnings);
+  if (options.mirror_z == MirrorZ::kAuto) {
+    flip_z = AutoMirrorZ(points, kind, source, options.report_orientation, warnings);
+  }
   if (flip_z) {
     for (Point& p : points) p.z = -p.z;
     profile.mirrored_z = !profile.mirrored_z;
+  }
+  if (options.mirror_z != MirrorZ::kAuto) CheckZOrientation(points, kind, flip_z, source, profile);
+  // Upside down, the rail's deep side and the wheel's flange are not what they seem: the
+  // lateral judgement would name the wrong key.
+  if (profile.orientation_doubts.empty()) {
+    OrientLaterally(points, kind, options, source, profile, warnings);
   }
 
   // 2. Repeated points (a zero-length segment has no direction).
@@ -389,8 +491,7 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
   // 6. Size check.
   const double length = Length(points);
   if (!(length >= kMinProfileLength && length <= kMaxProfileLength)) {  // NaN fails too.
-    throw InputError(source + ": profile length " + Format("%.6g", length) +
-                     " mm is outside [5, 500] mm (CONTACT's limits); are the units mm?");
+    throw InputError(LengthProblem(source, length));
   }
 
   profile.y.reserve(points.size());

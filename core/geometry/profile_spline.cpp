@@ -153,13 +153,14 @@ struct YTable {
 struct ProfileSpline::Impl {
   ProfileKind kind;
   std::string source;
-  std::vector<std::string> warnings;  ///< The profile's repairs (Profile::warnings).
-  std::vector<double> s;              ///< Knots: the arc length at each profile point.
-  std::vector<Part> parts;            ///< Ascending in s; a kink is the last knot of one part and
-                                      ///< the first of the next.
-  std::vector<double> part_start;     ///< s at each part's first knot.
-  std::vector<YPiece> pieces;         ///< One per knot interval.
-  double last_y = 0.0;                ///< y of the last point.
+  std::vector<std::string> warnings;            ///< The profile's repairs (Profile::warnings).
+  std::vector<std::string> orientation_doubts;  ///< Profile::orientation_doubts.
+  std::vector<double> s;                        ///< Knots: the arc length at each profile point.
+  std::vector<Part> parts;         ///< Ascending in s; a kink is the last knot of one part and
+                                   ///< the first of the next.
+  std::vector<double> part_start;  ///< s at each part's first knot.
+  std::vector<YPiece> pieces;      ///< One per knot interval.
+  double last_y = 0.0;             ///< y of the last point.
   double y_min = 0.0;
   double y_max = 0.0;
   YTable table;
@@ -382,6 +383,7 @@ ProfileSpline::ProfileSpline(const Profile& profile) {
   impl_ = std::make_unique<Impl>();
   Impl& impl = *impl_;
   impl.warnings = profile.warnings;
+  impl.orientation_doubts = profile.orientation_doubts;
   impl.kind = profile.kind;
   impl.source = profile.source;
   impl.s.assign(n, 0.0);
@@ -429,6 +431,9 @@ ProfileSpline::ProfileSpline(const Profile& profile) {
 
 ProfileSpline::~ProfileSpline() = default;
 const std::vector<std::string>& ProfileSpline::warnings() const { return impl_->warnings; }
+const std::vector<std::string>& ProfileSpline::orientation_doubts() const {
+  return impl_->orientation_doubts;
+}
 
 ProfileSpline::ProfileSpline(const ProfileSpline& other)
     : impl_(std::make_unique<Impl>(*other.impl_)) {}

@@ -46,8 +46,20 @@ const std::vector<SectionSchema>& CaseSchema() {
   constexpr Applies kHS = Applies::kHalfspace;
   static const std::vector<SectionSchema> schema = {
       {"problem", kBoth, {{"type", kBoth}}},
-      {"rail", kWR, {{"profile", kWR}, {"mirror_y", kWR}}},
-      {"wheel", kWR, {{"profile", kWR}, {"mirror_y", kWR}}},
+      {"rail",
+       kWR,
+       {{"profile", kWR},
+        {"mirror_y", kWR},
+        {"mirror_z", kWR},
+        {"smooth", kWR},
+        {"scale_yz", kWR}}},
+      {"wheel",
+       kWR,
+       {{"profile", kWR},
+        {"mirror_y", kWR},
+        {"mirror_z", kWR},
+        {"smooth", kWR},
+        {"scale_yz", kWR}}},
       {"track",
        kWR,
        {{"gauge_height", kWR},
@@ -247,17 +259,52 @@ void RequireForce(const Section& section, std::string_view key, double force) {
   if (force < kMinForce) section.Fail(key, "must be at least " + FormatNumber(kMinForce) + " N");
 }
 
+// Smoothing wavelengths beyond the longest profile accepted (500 mm) would flatten it whole.
+constexpr double kMaxSmoothingWavelength = 500.0;
+
+/// `true`, `false` or "auto" (nullopt).
+std::optional<bool> ReadMirror(const Section& section, std::string_view key, bool fallback) {
+  const toml::node* node = section.Find(key);
+  if (node == nullptr) return fallback;
+  if (const auto* text = node->as_string(); text != nullptr && text->get() == "auto") {
+    return std::nullopt;
+  }
+  if (node->as_boolean() == nullptr) section.Fail(key, "must be true, false or \"auto\"");
+  return node->as_boolean()->get();
+}
+
+/// mirror_y, mirror_z, smooth and scale_yz of a [rail] or [wheel] section.
+void ReadProfileOptions(const Section& section, ProfileSource& profile) {
+  const std::optional<bool> mirror_y = ReadMirror(section, "mirror_y", false);
+  profile.mirror_y = mirror_y.value_or(false);
+  profile.mirror_y_auto = !mirror_y;
+  // Without the key z is decided automatically, silently, as it always was; written as "auto",
+  // the decision is reported.
+  const std::optional<bool> mirror_z = ReadMirror(section, "mirror_z", false);
+  const bool z_written = section.Has("mirror_z");
+  profile.mirror_z = !z_written || !mirror_z ? MirrorZ::kAuto
+                     : *mirror_z             ? MirrorZ::kYes
+                                             : MirrorZ::kNo;
+  profile.report_orientation = !mirror_y || (z_written && !mirror_z);
+  profile.smooth = section.Number("smooth", profile.smooth);
+  RequireNonNegative(section, "smooth", profile.smooth);
+  if (profile.smooth > kMaxSmoothingWavelength) {
+    section.Fail("smooth", "must be at most " + FormatNumber(kMaxSmoothingWavelength) +
+                               " mm (a wavelength along the profile; 0 = no smoothing)");
+  }
+  profile.scale_yz = section.Number("scale_yz", profile.scale_yz);
+  RequirePositive(section, "scale_yz", profile.scale_yz);
+}
+
 /// Reads the profile file as the wheel-rail solver does (wrc::ReadProfile with the section's
-/// mirror_y and default options, then the arc-length spline), so that a broken profile is
+/// options, then the arc-length spline), so that a broken profile is
 /// reported with the key that names it, before any solve:
 /// `case.toml:4: rail.profile = "rail.csv": /.../rail.csv:5: 'five' is not a number ...`.
 /// Costs about 1-2 ms per profile.
 void CheckProfileContents(const Section& section, ProfileSource& profile, ProfileKind kind) {
-  ProfileOptions options;
-  options.mirror_y = profile.mirror_y;
   try {
     profile.spline = std::make_shared<const ProfileSpline>(
-        wrc::ReadProfile(profile.path.string(), kind, options));
+        wrc::ReadProfile(profile.path.string(), kind, ProfileOptionsOf(profile)));
   } catch (const InputError& error) {
     section.Fail("profile", error.what());
   }
@@ -275,7 +322,7 @@ ProfileSource ReadProfileSource(const Section& section, ProfileKind kind,
   profile.path_as_written = *written;
   const std::filesystem::path as_given(*written);
   profile.path = as_given.is_absolute() ? as_given : (base_dir / as_given).lexically_normal();
-  profile.mirror_y = section.Bool("mirror_y", false);
+  ReadProfileOptions(section, profile);
   if (check_file) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(profile.path, error)) {
@@ -664,6 +711,17 @@ double Friction::MuAt(double alpha_rad) const {
       std::upper_bound(alpha_deg.begin(), alpha_deg.end(), alpha) - alpha_deg.begin());
   const double t = (alpha - alpha_deg[i - 1]) / (alpha_deg[i] - alpha_deg[i - 1]);
   return mu[i - 1] + t * (mu[i] - mu[i - 1]);
+}
+
+ProfileOptions ProfileOptionsOf(const ProfileSource& source) {
+  ProfileOptions options;
+  options.mirror_y = source.mirror_y;
+  options.detect_mirror_y = source.mirror_y_auto;
+  options.mirror_z = source.mirror_z;
+  options.report_orientation = source.report_orientation;
+  options.smoothing = source.smooth;
+  options.scale_yz = source.scale_yz;
+  return options;
 }
 
 Case ParseCase(std::string_view toml_text, const std::filesystem::path& base_dir,

@@ -44,8 +44,11 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
   for (int k = 0; k <= n; ++k) s_scan[k] = spline_->length() * k / n;
   const std::vector<ProfileVector> scan = spline_->PositionsAt(s_scan);
   double zmin = std::numeric_limits<double>::infinity();
+  double y_top = 0.0;
   for (int k = 0; k <= n; ++k) {
-    z_scan[k] = (R_TR_ * ToEigen(scan[k]))(1);
+    const Eigen::Vector2d rotated = R_TR_ * ToEigen(scan[k]);
+    z_scan[k] = rotated(1);
+    if (z_scan[k] < zmin) y_top = rotated(0);
     zmin = std::min(zmin, z_scan[k]);
   }
   const double z_shift = -zmin;
@@ -73,6 +76,23 @@ PlacedRail::PlacedRail(std::shared_ptr<const ProfileSpline> spline, const Track&
     throw InputError("rail profile " + spline_->source() + " does not reach the gauge height " +
                      FormatNumber(track.gauge_height) + " mm below its top: set " +
                      "track.gauge_height <= 0 and place the rail with rail_y/rail_z");
+  }
+  // The gauge face belongs on the track-centre side of the top. Reaching the gauge height only
+  // on the field side means the profile is mirrored (a MiniProf rail read without mirror_y):
+  // placing it would put the field side against the flange and give a plausible-looking but
+  // wrong contact.
+  if (y_gauge > y_top) {
+    // An upside-down rail also fails here; its own doubt then names the key to change.
+    std::string fix;
+    for (const std::string& doubt : spline_->orientation_doubts()) fix += "; " + doubt;
+    if (fix.empty()) {
+      fix =
+          "; the profile looks mirrored in y: set rail.mirror_y = true (MiniProf rail files "
+          "usually need it) or rail.mirror_y = \"auto\"";
+    }
+    throw InputError("rail profile " + spline_->source() + " reaches the gauge height " +
+                     FormatNumber(track.gauge_height) +
+                     " mm below its top only on its field side (larger y)" + fix);
   }
   p_TRo_T_ = {0.5 * track.gauge_width - y_gauge, z_shift};
 }

@@ -323,6 +323,53 @@ void AddProfileWarnings(const Problem& pb, WheelRailResult& result) {
   }
 }
 
+// Measured wheel profiles may leave out up to this much (mm) of the flange back where it meets
+// the inner rim face; a larger distance between the flange back found in the profile and
+// wheelset.flange_back_position is a wrong origin convention (0 for MiniProf, −70 for S1002 in
+// Simpack files), which shifts the wheel by tens of millimetres.
+constexpr double kFlangeBackTolerance = 5.0;
+
+// A sentence naming the flange_back_position that fits the wheel profile, or empty when the
+// given one fits (or the profile has no flange to judge by).
+std::string FlangeBackHint(const ProfileSpline& wheel, const Wheelset& wheelset) {
+  const std::optional<double> found = FlangeBackY(wheel);
+  if (!found || std::fabs(*found - wheelset.flange_back_position) <= kFlangeBackTolerance)
+    return "";
+  // Within the tolerance of 0 the origin is at the flange back, as MiniProf puts it.
+  const double suggested = std::fabs(*found) <= kFlangeBackTolerance ? 0.0 : std::round(*found);
+  return "the flange back of wheel profile " + wheel.source() +
+         " lies at y = " + FormatNumber(std::round(*found * 10.0) / 10.0) +
+         " mm in the profile's coordinates, but wheelset.flange_back_position = " +
+         FormatNumber(wheelset.flange_back_position) +
+         " mm: set flange_back_position = " + FormatNumber(suggested) +
+         " (MiniProf .whl files have their origin at the flange back, 0; Simpack S1002-type "
+         "files at the tape circle line, -70)";
+}
+
+// Beyond this distance (mm) the flange back given and the one in the profile cannot both be
+// meant: the wheel would stand that far beside its design position, a different wheelset.
+constexpr double kFlangeBackMismatch = 25.0;
+
+// Refuses a flange_back_position that misses the profile's flange back by more than
+// kFlangeBackMismatch; returns the warning for a smaller mismatch (empty when none).
+std::string CheckFlangeBack(const Case& c, const ProfileSpline& wheel) {
+  const std::string hint = FlangeBackHint(wheel, c.wheelset);
+  const std::optional<double> found = FlangeBackY(wheel);
+  if (!hint.empty() && std::fabs(*found - c.wheelset.flange_back_position) > kFlangeBackMismatch) {
+    throw InputError(c.source_name + ": " + hint);
+  }
+  return hint;
+}
+
+// The profiles' orientation doubts, for an error that a misoriented profile can cause.
+std::string OrientationDoubts(const Problem& pb) {
+  std::string doubts;
+  for (const ProfileSpline* spline : {&pb.rail->spline(), pb.wheel_spline.get()}) {
+    for (const std::string& doubt : spline->orientation_doubts()) doubts += "; " + doubt;
+  }
+  return doubts;
+}
+
 // A solution with a non-finite force or position is no solution: status not converged, with
 // the reason, instead of numbers that are not numbers.
 void RequireFiniteResult(WheelRailResult& result) {
@@ -459,9 +506,8 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   pb.c = &c;
   pb.options = &options;
   pb.material = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
-  ProfileOptions rail_options, wheel_options;
-  rail_options.mirror_y = c.rail.mirror_y;
-  wheel_options.mirror_y = c.wheel.mirror_y;
+  const ProfileOptions rail_options = ProfileOptionsOf(c.rail);
+  const ProfileOptions wheel_options = ProfileOptionsOf(c.wheel);
   // Profiles already read by LoadCase / LoadScene are shared; a case built in code is read here.
   pb.rail = std::make_unique<PlacedRail>(
       c.rail.spline ? c.rail.spline
@@ -472,6 +518,8 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
                         ? c.wheel.spline
                         : std::make_shared<const ProfileSpline>(ReadProfile(
                               c.wheel.path.string(), ProfileKind::kWheel, wheel_options));
+
+  const std::string flange_back_hint = CheckFlangeBack(c, *pb.wheel_spline);
 
   // A left case is solved as the mirror image of a right one (CONTACT does the same).
   pb.mirror = c.wheelset.side == WheelSide::kLeft ? -1.0 : 1.0;
@@ -500,7 +548,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   const double first_contact = FirstContact(pb.search);  // wheelset z of first touch
   if (!std::isfinite(first_contact)) {
     throw InputError(c.source_name + ": state.y = " + FormatNumber(st.y) +
-                     " mm: the wheel profile lies nowhere above the rail profile");
+                     " mm: the wheel profile lies nowhere above the rail profile" +
+                     (flange_back_hint.empty() ? "" : "; " + flange_back_hint) +
+                     OrientationDoubts(pb));
   }
 
   WheelRailResult result;
@@ -701,6 +751,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   }
   result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
   AddProfileWarnings(pb, result);
+  if (!flange_back_hint.empty()) result.warnings.push_back("placement: " + flange_back_hint);
   RequireFiniteResult(result);
   if (!result.patches.empty()) {
     AddTruncationWarnings(pb, result.z, result);

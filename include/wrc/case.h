@@ -15,10 +15,9 @@
 #include <vector>
 
 #include "wrc/material.h"
+#include "wrc/profile.h"
 
 namespace wrc {
-
-class ProfileSpline;
 
 /// `problem.type`.
 enum class CaseType {
@@ -62,11 +61,24 @@ struct ProfileSource {
   /// As written in the case file, for messages and for storing the profile under its name.
   std::string path_as_written;
   bool mirror_y = false;  ///< Mirror the profile in y before use.
+  /// `mirror_y = "auto"`: decide mirror_y from the profile's shape (mirror_y is then unused).
+  bool mirror_y_auto = false;
+  /// `mirror_z`: true, false or "auto" (the default: decided from the side faces).
+  MirrorZ mirror_z = MirrorZ::kAuto;
+  /// Whether mirror_y or mirror_z was written as "auto", so that the decision is reported.
+  bool report_orientation = false;
+  /// `smooth`: smoothing wavelength in mm (ProfileOptions::smoothing); 0 = none.
+  double smooth = 0.0;
+  /// `scale_yz`: factor from the file's length unit to mm (1000 for metres).
+  double scale_yz = 1.0;
   /// The profile as LoadCase / LoadScene read it (mirrored when asked), shared by every solve of
   /// the case or scene so that it is read and splined once; null when not read (a Case built
   /// in code), and the solver then reads `path` itself.
   std::shared_ptr<const ProfileSpline> spline;
 };
+
+/// The reading options that a `[rail]` or `[wheel]` section asks for.
+ProfileOptions ProfileOptionsOf(const ProfileSource& source);
 
 /// `[track]`: placement of the rail.
 struct Track {
@@ -213,8 +225,8 @@ inline double OmegaFromSpin(double spin, double velocity, double nominal_radius)
 }
 
 /// Reads and validates a case file. Also checks that the profile files exist and read as
-/// profiles (ReadProfile with the case's mirror_y, then ProfileSpline), so that a broken profile
-/// is reported with the key that names it. Throws InputError with a message
+/// profiles (ReadProfile with the section's ProfileOptionsOf, then ProfileSpline), so that a
+/// broken profile is reported with the key that names it. Throws InputError with a message
 /// "file:line: key = value: problem", for a profile "case.toml:4: rail.profile = "rail.csv":
 /// /.../rail.csv:5: <problem>".
 Case LoadCase(const std::filesystem::path& path);

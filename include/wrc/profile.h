@@ -53,6 +53,16 @@ struct ProfileOptions {
   /// Mirror y (y → −y) before anything else, as CONTACT's MIRRORY = 1. MiniProf rail files
   /// usually need it (avg_HR.BAN does).
   bool mirror_y = false;
+  /// Decide mirror_y from the profile's shape instead (mirror_y is then ignored), see
+  /// LateralOrientation: y is mirrored when the shape says the profile is mirrored, kept when it
+  /// says it is not or cannot tell (with a warning).
+  bool detect_mirror_y = false;
+  /// Add a warning saying what the automatic orientation (detect_mirror_y, MirrorZ::kAuto)
+  /// decided and why, for callers whose user asked for it explicitly.
+  bool report_orientation = false;
+  /// Factor applied to y and z before anything else, as CONTACT's SCALE_YZ: 1000 for a file
+  /// in metres, 25.4 for inches. Finite and > 0.
+  double scale_yz = 1.0;
   /// Mirror z. Automatic detection looks at the two ends of the profile: over the last 2 mm of
   /// each end, a face steeper than 30° counts as a side face. Rail side faces must run towards
   /// +z (downwards) at the ends, wheel side faces (flange back, field-side chamfer) towards −z.
@@ -60,7 +70,9 @@ struct ProfileOptions {
   /// (flat or grooved profiles) or a tie, z is kept and a warning says so. This follows the user
   /// guide's description of CONTACT's heuristic ("based on wheel and rail side faces"); its exact
   /// algorithm is not documented. It agrees with CONTACT on every measured profile file whose
-  /// behaviour is known (Simpack files kept, MiniProf rails mirrored, grooves kept).
+  /// behaviour is known (Simpack files kept, MiniProf rails mirrored, grooves kept). With kYes
+  /// or kNo the same test runs on the result, and a warning naming mirror_z is added (and kept
+  /// in Profile::orientation_doubts) when the side faces say it is upside down.
   MirrorZ mirror_z = MirrorZ::kAuto;
   /// Smoothing wavelength L_filt in mm (CONTACT's SMOOTH with ISMOOTH = 1); 0 = no smoothing,
   /// otherwise finite and > 0. The points are replaced by a weighted cubic smoothing spline that
@@ -113,6 +125,9 @@ struct Profile {
   std::vector<std::size_t> kinks;
   /// Everything repaired or ignored, one sentence each, naming the file and its line numbers.
   std::vector<std::string> warnings;
+  /// The warnings that say the profile looks upside down or mirrored, with the key to change
+  /// (also in `warnings`): callers add them to errors that a wrong orientation can cause.
+  std::vector<std::string> orientation_doubts;
 
   std::size_t size() const { return y.size(); }
   /// Length of the polyline through the points, mm.
@@ -204,6 +219,31 @@ Profile RepairProfile(ProfilePoints points, ProfileKind kind, const ProfileOptio
 Profile MakeProfile(const std::vector<double>& y, const std::vector<double>& z, ProfileKind kind,
                     const ProfileOptions& options = {}, const std::string& name = "<memory>");
 
+/// What the shape of a profile says about its lateral (y) orientation.
+enum class LateralVerdict {
+  kAsExpected,  ///< The profile runs as the conventions require (see file comment).
+  kMirrored,    ///< The profile looks mirrored in y: field side and track-centre side swapped.
+  kUndecided,   ///< The shape does not tell (symmetric, flangeless, too short).
+};
+
+/// The verdict with the evidence, in words for messages.
+struct LateralOrientation {
+  LateralVerdict verdict = LateralVerdict::kUndecided;
+  std::string reason;  ///< E.g. "the flange lies at the larger-y end".
+};
+
+/// Judges the lateral orientation of points in the profile's own coordinates (z already
+/// downwards, any point order). Rail profiles have their gauge face on the track-centre side,
+/// at smaller y: a profile that reaches at least 10 mm below its highest point on one side of
+/// it and less than a third of that on the other is judged by which side is the deep one (a
+/// MiniProf measures the gauge face far down, the field side only a few mm). Wheel profiles
+/// have their flange, the lowest point, on the track-centre side: the flange tip must lie in
+/// the third of the profile's width at smaller y and at least 5 mm below the profile's middle.
+/// Everything else (full rail sections, rollers, circles, flat or grooved profiles) is
+/// undecided.
+LateralOrientation JudgeLateralOrientation(const std::vector<double>& y,
+                                           const std::vector<double>& z, ProfileKind kind);
+
 /// A point or direction in the profile plane.
 struct ProfileVector {
   double y = 0.0;
@@ -258,6 +298,8 @@ class ProfileSpline {
   /// What was repaired or ignored while reading the profile (Profile::warnings), kept so that
   /// results can report it.
   const std::vector<std::string>& warnings() const;
+  /// Profile::orientation_doubts of the profile.
+  const std::vector<std::string>& orientation_doubts() const;
   ~ProfileSpline();
   ProfileSpline(const ProfileSpline& other);
   ProfileSpline& operator=(const ProfileSpline& other);
@@ -307,5 +349,13 @@ class ProfileSpline {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Where the flange back of a wheel profile lies: the smallest y of the points on the
+/// track-centre side of the flange tip, in the profile's coordinates (the value that
+/// Wheelset::flange_back_position should have, to within the millimetre or two that a
+/// measurement may leave out where the flange back meets the inner rim face). Empty for a rail
+/// and for a wheel without a flange on the track-centre side (JudgeLateralOrientation of its
+/// points is not kAsExpected).
+std::optional<double> FlangeBackY(const ProfileSpline& wheel);
 
 }  // namespace wrc

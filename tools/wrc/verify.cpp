@@ -272,10 +272,8 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
   // Read and spline the profiles once for all sampled points (as LoadScene does).
   for (auto [source, kind] : {std::pair{&stored->scene.base.rail, ProfileKind::kRail},
                               std::pair{&stored->scene.base.wheel, ProfileKind::kWheel}}) {
-    ProfileOptions options;
-    options.mirror_y = source->mirror_y;
-    source->spline =
-        std::make_shared<const ProfileSpline>(ReadProfile(source->path.string(), kind, options));
+    source->spline = std::make_shared<const ProfileSpline>(
+        ReadProfile(source->path.string(), kind, ProfileOptionsOf(*source)));
   }
   return stored;
 }
