@@ -44,22 +44,13 @@ const std::vector<SectionSchema>& CaseSchema() {
   constexpr Applies kBoth = Applies::kBoth;
   constexpr Applies kWR = Applies::kWheelRail;
   constexpr Applies kHS = Applies::kHalfspace;
+  // [rail] and [wheel] take the same keys.
+  const std::vector<KeySchema> profile_keys = {
+      {"profile", kWR}, {"mirror_y", kWR}, {"mirror_z", kWR}, {"smooth", kWR}, {"scale_yz", kWR}};
   static const std::vector<SectionSchema> schema = {
       {"problem", kBoth, {{"type", kBoth}}},
-      {"rail",
-       kWR,
-       {{"profile", kWR},
-        {"mirror_y", kWR},
-        {"mirror_z", kWR},
-        {"smooth", kWR},
-        {"scale_yz", kWR}}},
-      {"wheel",
-       kWR,
-       {{"profile", kWR},
-        {"mirror_y", kWR},
-        {"mirror_z", kWR},
-        {"smooth", kWR},
-        {"scale_yz", kWR}}},
+      {"rail", kWR, profile_keys},
+      {"wheel", kWR, profile_keys},
       {"track",
        kWR,
        {{"gauge_height", kWR},
