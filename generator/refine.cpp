@@ -45,6 +45,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // ranking spends a true discontinuity's nodes only while they pay, and a limit still keeps
 // one from taking the whole budget.
 constexpr double kDefaultMinStepFraction = 1.0 / 2048.0;
+// A pass at most doubles the point count: the intervals that pay most go first, and those that
+// pay little wait until the better ones are within target instead of taking the budget early
+// (every split is final). Doubling keeps the passes few: about log2(budget / start) of them.
+constexpr double kMaxGrowthPerPass = 2.0;
 // Points drawn over the whole state space after the last pass to estimate the final error.
 constexpr int kCheckPoints = 400;
 // The score of an interval whose midpoint fails to solve while its ends solve (see
@@ -434,8 +438,15 @@ double NormalisedError(const ErrorModel& model, double load, const std::vector<d
 }
 
 struct IntervalScore {
-  double max_error = 0.0;  ///< In units of the target.
+  double max_error = 0.0;       ///< In units of the target.
+  double sum_of_squares = 0.0;  ///< Of the sampled errors, in units of the target.
   int samples = 0;
+  double MeanSquare() const { return samples > 0 ? sum_of_squares / samples : 0.0; }
+  void Add(double error) {
+    max_error = std::max(max_error, error);
+    sum_of_squares += error * error;
+    ++samples;
+  }
 };
 
 // Midpoint errors of the linear interpolant (the mean of the interval's end values), per
@@ -461,8 +472,7 @@ std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const T
       // Both ends solve, the middle does not: the behaviour changes in between, which a
       // finer grid resolves (or bounds, at min_step). Above target, but after every interval
       // with a measured error above 1.5 × target.
-      score.max_error = std::max(score.max_error, kFailedMidpointScore);
-      ++score.samples;
+      score.Add(kFailedMidpointScore);
       continue;
     }
     const PointResult left = ResultAt(data, lower), right = ResultAt(data, upper);
@@ -473,8 +483,7 @@ std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const T
     const double load = LocalLoad(model, sample.point, {&left.values, &right.values, &mid.values});
     const double e = NormalisedError(model, load, mid.values, estimate);
     if (std::isnan(e)) continue;
-    score.max_error = std::max(score.max_error, e);
-    ++score.samples;
+    score.Add(e);
   }
   return scores;
 }
@@ -484,13 +493,16 @@ struct Split {
   double priority;
 };
 
-// Splits the intervals above target, as far as the point budget allows, those that lower the
-// mean-square error the most per added point first. Linear interpolation leaves an interval's
-// error spread over its share of the state space, so its contribution to the mean square is
-// about score² × relative width; a node on axis a adds N / n_a points (N points, n_a nodes on
-// a). Ranking by score alone, or by score × width, starves narrow intervals around a steep
-// rise (flange contact: a tenth of a millimetre, errors of tens of target units), which then
-// dominate the rms of a uniform verification.
+// Splits intervals above target, those that lower the mean-square error the most per added
+// point first, while the pass stays within kMaxGrowthPerPass and the table within the budget.
+// Linear interpolation leaves an interval's error spread over its share of the state space, so
+// its contribution to the mean square is about (mean squared sampled error) × relative width;
+// a node on axis a adds N / n_a points (N points, n_a nodes on a). The mean, not the maximum,
+// of the samples: a steep rise that moves with the other coordinates (the flange climb on the
+// Manchester pair, 0.1 mm wide in y, moving by 0.1 mm with load, roll and yaw) shows in every
+// sample of the y intervals it crosses but in few samples of a yaw interval, and splitting yaw
+// there buys little. Ranking by score alone, or by score × width, starves narrow intervals
+// around such a rise, which then dominate the rms of a uniform verification.
 Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScore>>& scores,
                     std::size_t max_points, std::size_t* refused) {
   std::vector<Split> candidates;
@@ -499,15 +511,16 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
     const double range = v.back() - v.front();
     for (std::size_t j = 0; j < scores[a].size(); ++j) {
       if (scores[a][j].max_error <= 1.0) continue;
-      const double score = scores[a][j].max_error;
       const double width = (v[j + 1] - v[j]) / range;
-      candidates.push_back({a, j, score * score * width * static_cast<double>(v.size())});
+      candidates.push_back(
+          {a, j, scores[a][j].MeanSquare() * width * static_cast<double>(v.size())});
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Split& x, const Split& y) { return x.priority > y.priority; });
   std::vector<std::size_t> size(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) size[a] = axes[a].values.size();
+  const double pass_limit = kMaxGrowthPerPass * static_cast<double>(PointCount(axes));
   std::vector<std::vector<char>> chosen(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) chosen[a].assign(scores[a].size(), 0);
   *refused = 0;
@@ -515,6 +528,11 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
     ++size[split.axis];
     double points = 1.0;
     for (const std::size_t n : size) points *= static_cast<double>(n);
+    if (points > pass_limit && points <= static_cast<double>(max_points)) {
+      // The pass is full: the rest wait for the next pass, ranked again on its samples.
+      --size[split.axis];
+      break;
+    }
     if (points > static_cast<double>(max_points)) {
       --size[split.axis];
       ++*refused;

@@ -378,7 +378,7 @@ RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
   settings.max_points = static_cast<std::size_t>(
       ReadInteger(refine, "max_points", std::max<std::int64_t>(points, 1'000'000), points,
                   static_cast<std::int64_t>(kMaxPointCount)));
-  settings.max_passes = static_cast<int>(ReadInteger(refine, "max_passes", 12, 0, 100));
+  settings.max_passes = static_cast<int>(ReadInteger(refine, "max_passes", 40, 0, 100));
   settings.samples = static_cast<int>(ReadInteger(refine, "samples", 24, 1, 10'000));
   settings.seed = static_cast<std::uint64_t>(
       ReadInteger(refine, "seed", 1, 0, std::numeric_limits<std::int64_t>::max()));

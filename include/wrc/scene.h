@@ -48,13 +48,13 @@ struct RefineSettings {
   /// Budget: the table never grows beyond this many grid points.
   std::size_t max_points = 1'000'000;
   /// Budget: at most this many refinement passes after the starting grid.
-  int max_passes = 12;
+  int max_passes = 40;
   /// Exact solves per axis interval and pass that measure its interpolation error.
   int samples = 24;
   /// Seed of the sample draw: a refinement is repeatable to the bit.
   std::uint64_t seed = 1;
   /// Smallest interval per axis name: an interval shorter than twice this is never split.
-  /// Axes not listed get (range) / 512.
+  /// Axes not listed get (range) / 2048.
   std::map<std::string, double, std::less<>> min_step;
 };
 
