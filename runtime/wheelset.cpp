@@ -61,8 +61,12 @@ struct Wheel {
   // The value the table was made with for each quantity that is not an axis (NaN: unknown, or
   // irrelevant such as z when fz was prescribed).
   double fixed[kQuantities] = {};
+  bool has_axis[kQuantities] = {};
   double velocity = 0.0;        // V0, mm/s
   double nominal_radius = 0.0;  // r0, mm
+  // Lateral distance of the wheel profile's origin from the wheelset centre, mm: the lever of
+  // the yaw rate's longitudinal creepage.
+  double lever = 0.0;
 };
 
 }  // namespace
@@ -109,6 +113,9 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
   w.table = table;
   w.velocity = *velocity;
   w.nominal_radius = SceneNumber(scene, "wheelset", "nominal_radius").value_or(460.0);
+  // The solver's defaults (include/wrc/case.h) where the scene leaves them out.
+  w.lever = 0.5 * SceneNumber(scene, "wheelset", "flange_back_distance").value_or(1360.0) -
+            SceneNumber(scene, "wheelset", "flange_back_position").value_or(-70.0);
   const std::string table_side = SceneString(scene, "wheelset", "side").value_or("right");
   w.mirror = (table_side == "left") == (side == WRC_LEFT) ? 1.0 : -1.0;
   ReadFixedState(scene, w);
@@ -123,6 +130,7 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
     w.axis_first[a] = wrc_table_axis_values(table, a)[0];
     w.axis_last[a] = wrc_table_axis_values(table, a)[wrc_table_axis_size(table, a) - 1];
     w.fixed[q] = NAN;
+    w.has_axis[q] = true;
     // spin and omega are one quantity in two forms; so are y and y_wheel (given roll).
     if (q == kSpin || q == kOmega) w.fixed[kSpin] = w.fixed[kOmega] = NAN;
     if (q == kYWheel) w.fixed[kY] = NAN;
@@ -134,6 +142,28 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
   for (int k = 0; k < kOutputs; ++k)
     w.output_index[k] = wrc_table_output_index(table, kOutputNames[k]);
   return 0;
+}
+
+// Velocities the table has no axis for enter through the pose of equal creepage, as the
+// creepages are what the contact sees: the lateral creepage vy/V − yaw − vroll·r0/V on the yaw
+// axis, the yaw rate's longitudinal creepage −vyaw·y_c/V (y_c the wheel's lateral position,
+// ±lever) on the spin axis. Both differ from the table's own velocities (fixed) only.
+void FoldVelocities(const Wheel& w, int side, double (&value)[kQuantities]) {
+  const bool lateral = w.has_axis[kYaw] && !w.has_axis[kVy] && !w.has_axis[kVroll];
+  if (lateral && !std::isnan(w.fixed[kVy]) && !std::isnan(w.fixed[kVroll])) {
+    value[kYaw] -=
+        (value[kVy] - w.fixed[kVy] - (value[kVroll] - w.fixed[kVroll]) * w.nominal_radius) /
+        w.velocity;
+    value[kVy] = w.fixed[kVy];
+    value[kVroll] = w.fixed[kVroll];
+  }
+  const bool longitudinal = (w.has_axis[kSpin] || w.has_axis[kOmega]) && !w.has_axis[kVyaw];
+  if (longitudinal && !std::isnan(w.fixed[kVyaw])) {
+    const double y_c = side == WRC_RIGHT ? w.lever : -w.lever;
+    value[kSpin] += (value[kVyaw] - w.fixed[kVyaw]) * y_c / w.velocity;
+    value[kOmega] = -(w.velocity / w.nominal_radius) * (1.0 + value[kSpin]);
+    value[kVyaw] = w.fixed[kVyaw];
+  }
 }
 
 // The wheel's view of the state in the right-hand quantities of its table, before mirroring:
@@ -153,6 +183,7 @@ void StateQuantities(const wrc_wheelset_state& s, int side, const Wheel& w,
   value[kVyaw] = s.vyaw * scale;
   value[kMu] = s.mu[side];
   value[kYWheel] = s.y - w.nominal_radius * s.roll;
+  FoldVelocities(w, side, value);
   for (int q = 0; q < kQuantities; ++q) value[q] *= w.mirror > 0.0 ? 1.0 : kQuantityMirror[q];
 }
 

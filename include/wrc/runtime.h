@@ -266,7 +266,10 @@ WRC_API int wrc_wheelset_set_rail_origin(wrc_wheelset* wheelset, int side, doubl
 
 /** Evaluates both wheels. Velocities enter relative to the forward speed: a table made at speed
  *  V0 is read at vy·V0/V, vyaw·V0/V (and vroll, omega likewise; spin = −omega·r0/V − 1 with the
- *  table's nominal radius r0), so one table serves every speed.
+ *  table's nominal radius r0), so one table serves every speed. On a table without vy and vroll
+ *  axes the lateral velocities are read on the yaw axis at yaw − vy/V + vroll·r0/V, without a vyaw
+ *  axis the yaw rate on the spin axis at spin + vyaw·y_c/V (y_c = ±(flange_back_distance/2 −
+ *  flange_back_position), + right): the poses of equal creepage (runtime/README.md).
  *  @return the flags of both wheels or'ed (each wheel's in result->wheel[i].flags), or a
  *          negative WRC_ERR_* code (NULL pointer, NaN input, velocity ≤ 0, no data) with the
  *          reason in wrc_last_error(). Thread-safe; does not allocate. */

@@ -255,3 +255,66 @@ TEST(WheelsetYWheel, PoseMapsToTheWheelsLateralPosition) {
 
 }  // namespace
 }  // namespace wrc
+
+namespace wrc {
+namespace {
+
+// A table without velocity axes serves a state with vy, vroll and vyaw through the pose of
+// equal creepage (yaw − vy/V + vroll·r0/V, spin + vyaw·y_c/V). The reference is the solver's
+// own kinematics of the same state; they differ by the 1 mrad of yaw geometry the fold leaves
+// out and the lever of the yaw rate (the profile origin, not the contact point): 32 N here,
+// while the velocities move the forces by more than 1.3 kN.
+TEST(WheelsetVelocities, FoldIntoYawAndSpinWhereTheTableHasNoAxis) {
+  ScratchDir dir("wheelset_fold");
+  const Scene scene = LoadScene(test::WriteFile(
+      dir / "scene.toml",
+      test::TinyScene("axes = [\"y\", \"yaw\", \"spin\"]\ny = [-2.0, 2.0]\n"
+                      "yaw = [-0.002, 0.002]\nspin = [0.0, 0.002]\noutputs = [\"fx\", \"fy\", "
+                      "\"fz\", \"mx\", \"my\", \"mz\", \"contact_y\", \"contact_angle\"]",
+                      "fz = 10000.0\nvelocity = 20000.0")));
+  GenerateOptions options;
+  options.output = dir / "table.h5";
+  options.threads = 2;
+  options.progress = ProgressMode::kOff;
+  options.mpi = MpiMode::kOff;
+  ASSERT_TRUE(GenerateTable(scene, options).complete);
+  const Table table(options.output.string());
+  const WheelsetTable wheelset(table);
+
+  // Folded: yaw 0.002 and spin 0.001 ± 0.001 (right +, left −) are nodes on both sides.
+  const double lever = 0.5 * 1360.0 + 70.0;  // the scene's default wheelset geometry
+  WheelsetTable::State state;
+  state.y = 2.0;
+  state.vy = 20.0;  // lateral creepage 0.001
+  state.vroll = 0.01;
+  state.yaw = 0.002 + state.vy / kV0 - state.vroll * kRadius / kV0;
+  state.vyaw = 0.001 * kV0 / lever;
+  state.velocity = kV0;
+  state.omega = OmegaFromSpin(0.001, kV0, kRadius);
+  int flags = -1;
+  const wrc_wheelset_result result = wheelset.eval(state, &flags);
+  EXPECT_EQ(flags, 0);  // nothing fixed, nothing clamped
+
+  for (const WheelSide side : {WheelSide::kRight, WheelSide::kLeft}) {
+    SCOPED_TRACE(side == WheelSide::kRight ? "right" : "left");
+    Case c = CaseAtPoint(scene, {2.0, 0.0, 0.0});
+    c.wheelset.side = side;
+    c.state.yaw = state.yaw;
+    c.state.omega = state.omega;
+    const WheelRailResult rolling = SolveWheelRail(c);
+    c.state.vy = state.vy;
+    c.state.vroll = state.vroll;
+    c.state.vyaw = state.vyaw;
+    const WheelRailResult moving = SolveWheelRail(c);
+    const wrc_wheel_contact& wheel = result.wheel[side == WheelSide::kRight ? WRC_RIGHT : WRC_LEFT];
+    constexpr double kTolerance = 50.0;  // N, 0.5 % of the 10 kN load
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(wheel.force[i], moving.force_T(i), kTolerance) << i;
+    // The velocities matter: vyaw turns fx around on each side, vy moves fy.
+    EXPECT_GT(
+        std::hypot(moving.force_T(0) - rolling.force_T(0), moving.force_T(1) - rolling.force_T(1)),
+        10.0 * kTolerance);
+  }
+}
+
+}  // namespace
+}  // namespace wrc

@@ -86,14 +86,34 @@ TEST_F(RuntimeWheelset, QuantitiesWithoutAxisAreChecked) {
   EXPECT_EQ(r.wheel[WRC_LEFT].flags, WRC_FLAG_FIXED);
   EXPECT_EQ(r.wheel[WRC_RIGHT].flags, 0);
   s.fz[WRC_LEFT] = NAN;
-  s.vy = 1.0;  // the table was made at vy = 0
+  s.roll = 0.01;  // beyond the roll axis
   int flags = 0;
   wheelset.eval(s, &flags);
-  EXPECT_EQ(flags, WRC_FLAG_FIXED);
-  s.vy = 0.0;
-  s.roll = 0.01;  // beyond the roll axis
-  wheelset.eval(s, &flags);
   EXPECT_EQ(flags, WRC_FLAG_CLAMPED);
+}
+
+// Without vy, vroll and vyaw axes the velocities enter as the yaw and spin of equal creepage:
+// yaw − vy/V + vroll·r0/V, and spin + vyaw·y_c/V with y_c = ±(1360/2 + 70) mm, the default
+// wheelset geometry (the synthetic table is affine, so the comparison is exact).
+TEST_F(RuntimeWheelset, VelocitiesWithoutAxisFoldIntoYawAndSpin) {
+  const WheelsetTable wheelset(table_);
+  const double v = 2.0 * kV0, lever = 750.0;
+  WheelsetTable::State s = State(1.0, 0.001, 0.002, 0.001, v);
+  s.vy = 30.0;
+  s.vroll = 0.02;
+  s.vyaw = 0.05;
+  int flags = -1;
+  const wrc_wheelset_result r = wheelset.eval(s, &flags);
+  EXPECT_EQ(flags, 0);
+  const double yaw = 0.002 - s.vy / v + s.vroll * kRadius / v;
+  const double d_spin = s.vyaw * lever / v;
+  for (int k = 0; k < 8; ++k) {
+    const double right = WheelsetFunction(k, {1.0, 0.001, yaw, 0.001 + d_spin});
+    const double left =
+        kOutputMirror[k] * WheelsetFunction(k, {-1.0, -0.001, -yaw, 0.001 - d_spin});
+    EXPECT_NEAR(Output(r.wheel[WRC_RIGHT], k), right, kTolerance * std::fabs(right)) << k;
+    EXPECT_NEAR(Output(r.wheel[WRC_LEFT], k), left, kTolerance * std::fabs(left)) << k;
+  }
 }
 
 TEST_F(RuntimeWheelset, RejectsWhatItCannotRead) {

@@ -39,11 +39,6 @@ double Root(const std::function<double(double)>& g, double a, double b, double t
   return b;
 }
 
-// The signed distance from the wheelset centre to the nominal rolling circle of a side.
-double SideOffset(const ContactGeometry& g, int side) {
-  return std::copysign(g.semi_spacing, g.origin[side][0]);
-}
-
 }  // namespace
 
 RollCurve::RollCurve(const std::function<double(int, double, double)>& height, double y_max,
@@ -131,22 +126,21 @@ double TableForces::Height(int side, double y, double roll) const {
 }
 
 ContactLoads TableForces::operator()(const State& s, double velocity) const {
-  const double roll = roll_(s.y);
+  // One evaluation of both wheels: the wheelset API reads vy and vyaw on the yaw and spin axes
+  // (the poses of equal creepage) where the table has no axes for them.
+  wrc::WheelsetTable::State w;
+  w.y = s.y;
+  w.roll = roll_(s.y);
+  w.yaw = s.yaw;
+  w.vy = s.vy;
+  w.vyaw = s.vyaw;
+  w.velocity = velocity;
+  w.omega = -velocity / geometry_.nominal_radius;
+  w.fz[0] = w.fz[1] = geometry_.wheel_load;
+  wrc_wheelset_result r;
+  const int flags = wheelset_.eval(w, r);  // throws wrc::TableError on errors
   double force[2][3], moment[2][3];
-  int flags = 0;
   for (int side : kSides) {
-    wrc::WheelsetTable::State w;
-    w.y = s.y;
-    w.roll = roll;
-    w.yaw = s.yaw - s.vy / velocity;  // lateral creepage vy/V − ψ as a yaw angle
-    w.velocity = velocity;
-    // Longitudinal creepage of the yaw rate, −vyaw·b/V at the wheel at b, as spin.
-    const double spin = s.vyaw * SideOffset(geometry_, side) / velocity;
-    w.omega = -velocity * (1.0 + spin) / geometry_.nominal_radius;
-    w.fz[0] = w.fz[1] = geometry_.wheel_load;
-    wrc_wheelset_result r;
-    wheelset_.eval(w, r);  // throws wrc::TableError on errors
-    flags |= r.wheel[side].flags;
     for (int i = 0; i < 3; ++i) {
       force[side][i] = r.wheel[side].force[i];
       moment[side][i] = r.wheel[side].moment[i];
