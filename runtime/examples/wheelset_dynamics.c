@@ -26,7 +26,6 @@ static const double kYawInertia = 1120.0;           /* kg m^2 */
 static const double kLateralStiffness = 100.0;      /* N/mm per axlebox */
 static const double kLongitudinalStiffness = 100.0; /* N/mm per axlebox */
 static const double kSemiSpacing = 1000.0;          /* mm, axleboxes from the centre */
-static const double kRollingSemiSpacing = 750.0;    /* mm, nominal rolling circles */
 static const double kNominalRadius = 460.0;         /* mm */
 static const double kTimeStep = 1e-3;               /* s */
 static const double kDuration = 2.0;                /* s */
@@ -100,28 +99,28 @@ static double roll_at(const Model* m, double y) {
   return y < 0.0 ? -r : r;
 }
 
-/* Contact forces on the wheelset: each wheel read from its own state, with the velocities
- * entering as the pose of equal creepage (vy as the yaw ψ − vy/V, the yaw rate as a spin of
- * ±b·vyaw/V), for tables that have yaw and spin axes but no vy and vyaw axes. */
+/* Contact forces on the wheelset, both wheels in one call: the runtime reads vy and the yaw rate
+ * on the yaw and spin axes (the poses of equal creepage) where the table has no vy and vyaw
+ * axes. */
 static int contact(Model* m, const State* s, double* fy, double* mz) {
   double fx = 0.0, mz_origin = 0.0;
-  int side;
+  wrc_wheelset_state w;
+  wrc_wheelset_result r;
+  int side, flags;
+  wrc_wheelset_state_init(&w);
+  w.y = s->y;
+  w.roll = roll_at(m, s->y);
+  w.yaw = s->yaw;
+  w.vy = s->vy;
+  w.vyaw = s->vyaw;
+  w.velocity = m->velocity;
+  w.omega = -m->velocity / kNominalRadius;
+  w.fz[0] = w.fz[1] = m->load;
+  flags = wrc_wheelset_eval(m->wheelset, &w, &r);
+  if (flags < 0) return flags;
+  m->flags |= flags;
   *fy = 0.0;
   for (side = 0; side < 2; ++side) {
-    wrc_wheelset_state w;
-    wrc_wheelset_result r;
-    const double b = m->origin_y[side] < 0.0 ? -kRollingSemiSpacing : kRollingSemiSpacing;
-    int flags;
-    wrc_wheelset_state_init(&w);
-    w.y = s->y;
-    w.roll = roll_at(m, s->y);
-    w.yaw = s->yaw - s->vy / m->velocity;
-    w.velocity = m->velocity;
-    w.omega = -m->velocity * (1.0 + s->vyaw * b / m->velocity) / kNominalRadius;
-    w.fz[0] = w.fz[1] = m->load;
-    flags = wrc_wheelset_eval(m->wheelset, &w, &r);
-    if (flags < 0) return flags;
-    m->flags |= r.wheel[side].flags;
     fx -= r.wheel[side].force[0];
     *fy -= r.wheel[side].force[1];
     mz_origin -= r.wheel[side].moment[2] - m->origin_y[side] * r.wheel[side].force[0];
