@@ -61,7 +61,9 @@ struct Wheel {
   // The value the table was made with for each quantity that is not an axis (NaN: unknown, or
   // irrelevant such as z when fz was prescribed).
   double fixed[kQuantities] = {};
-  bool has_axis[kQuantities] = {};
+  // Velocities without an axis of their own, read on yaw (vy, vroll) and on spin (vyaw).
+  bool fold_lateral = false;
+  bool fold_longitudinal = false;
   double velocity = 0.0;        // V0, mm/s
   double nominal_radius = 0.0;  // r0, mm
   // Lateral distance of the wheel profile's origin from the wheelset centre, mm: the lever of
@@ -119,6 +121,7 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
   const std::string table_side = SceneString(scene, "wheelset", "side").value_or("right");
   w.mirror = (table_side == "left") == (side == WRC_LEFT) ? 1.0 : -1.0;
   ReadFixedState(scene, w);
+  bool has_axis[kQuantities] = {};
   for (int a = 0; a < wrc_table_num_axes(table); ++a) {
     const int q = QuantityOf(wrc_table_axis_name(table, a));
     if (q < 0) {
@@ -130,11 +133,13 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
     w.axis_first[a] = wrc_table_axis_values(table, a)[0];
     w.axis_last[a] = wrc_table_axis_values(table, a)[wrc_table_axis_size(table, a) - 1];
     w.fixed[q] = NAN;
-    w.has_axis[q] = true;
+    has_axis[q] = true;
     // spin and omega are one quantity in two forms; so are y and y_wheel (given roll).
     if (q == kSpin || q == kOmega) w.fixed[kSpin] = w.fixed[kOmega] = NAN;
     if (q == kYWheel) w.fixed[kY] = NAN;
   }
+  w.fold_lateral = has_axis[kYaw] && !has_axis[kVy] && !has_axis[kVroll];
+  w.fold_longitudinal = (has_axis[kSpin] || has_axis[kOmega]) && !has_axis[kVyaw];
   if (wrc_table_num_outputs(table) > kMaxOutputs) {
     SetLastError("wrc_wheelset_create: the table has more than %d outputs", kMaxOutputs);
     return WRC_ERR_FORMAT;
@@ -149,16 +154,14 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
 // axis, the yaw rate's longitudinal creepage −vyaw·y_c/V (y_c the wheel's lateral position,
 // ±lever) on the spin axis. Both differ from the table's own velocities (fixed) only.
 void FoldVelocities(const Wheel& w, int side, double (&value)[kQuantities]) {
-  const bool lateral = w.has_axis[kYaw] && !w.has_axis[kVy] && !w.has_axis[kVroll];
-  if (lateral && !std::isnan(w.fixed[kVy]) && !std::isnan(w.fixed[kVroll])) {
+  if (w.fold_lateral) {
     value[kYaw] -=
         (value[kVy] - w.fixed[kVy] - (value[kVroll] - w.fixed[kVroll]) * w.nominal_radius) /
         w.velocity;
     value[kVy] = w.fixed[kVy];
     value[kVroll] = w.fixed[kVroll];
   }
-  const bool longitudinal = (w.has_axis[kSpin] || w.has_axis[kOmega]) && !w.has_axis[kVyaw];
-  if (longitudinal && !std::isnan(w.fixed[kVyaw])) {
+  if (w.fold_longitudinal) {
     const double y_c = side == WRC_RIGHT ? w.lever : -w.lever;
     value[kSpin] += (value[kVyaw] - w.fixed[kVyaw]) * y_c / w.velocity;
     value[kOmega] = -(w.velocity / w.nominal_radius) * (1.0 + value[kSpin]);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,19 @@ using test::ScratchDir;
 
 constexpr double kV0 = 20000.0;  // mm/s, the table's speed
 constexpr double kRadius = 460.0;
+
+// Generates `scene` into `path` on two threads; each node one cold solve (no warm start), as
+// the direct solves the tests compare with. Returns the path.
+std::string GenerateCold(const Scene& scene, const std::filesystem::path& path) {
+  GenerateOptions options;
+  options.output = path;
+  options.threads = 2;
+  options.progress = ProgressMode::kOff;
+  options.warm_start = false;
+  options.mpi = MpiMode::kOff;
+  EXPECT_TRUE(GenerateTable(scene, options).complete);
+  return path.string();
+}
 
 // y, yaw and vy symmetric about 0, so that the mirror image of a node is a node; vy = 200 is a
 // node too, so that reading 40 m/s unscaled would give another node's forces.
@@ -70,14 +84,7 @@ class WheelsetTest : public ::testing::Test {
     table_ = new Table(Generate(*scene_, "right.h5"));
   }
   static std::string Generate(const Scene& scene, const std::string& name) {
-    GenerateOptions options;
-    options.output = *dir_ / name;
-    options.threads = 2;
-    options.progress = ProgressMode::kOff;
-    options.warm_start = false;  // each node then is exactly one cold solve, as below
-    options.mpi = MpiMode::kOff;
-    EXPECT_TRUE(GenerateTable(scene, options).complete);
-    return options.output.string();
+    return GenerateCold(scene, *dir_ / name);
   }
   static void TearDownTestSuite() {
     delete table_;
@@ -226,14 +233,7 @@ TEST(WheelsetYWheel, PoseMapsToTheWheelsLateralPosition) {
                       "roll = [-0.002, 0.002]\noutputs = [\"fx\", \"fy\", \"fz\", \"mx\", "
                       "\"my\", \"mz\", \"contact_y\", \"contact_angle\"]",
                       "fz = 10000.0\nvelocity = 20000.0")));
-  GenerateOptions options;
-  options.output = dir / "table.h5";
-  options.threads = 2;
-  options.progress = ProgressMode::kOff;
-  options.warm_start = false;
-  options.mpi = MpiMode::kOff;
-  ASSERT_TRUE(GenerateTable(scene, options).complete);
-  const Table table(options.output.string());
+  const Table table(GenerateCold(scene, dir / "table.h5"));
   const WheelsetTable wheelset(table);
   for (const double y_wheel : scene.axes[0].values) {
     for (const double roll : scene.axes[1].values) {
@@ -272,13 +272,7 @@ TEST(WheelsetVelocities, FoldIntoYawAndSpinWhereTheTableHasNoAxis) {
                       "yaw = [-0.002, 0.002]\nspin = [0.0, 0.002]\noutputs = [\"fx\", \"fy\", "
                       "\"fz\", \"mx\", \"my\", \"mz\", \"contact_y\", \"contact_angle\"]",
                       "fz = 10000.0\nvelocity = 20000.0")));
-  GenerateOptions options;
-  options.output = dir / "table.h5";
-  options.threads = 2;
-  options.progress = ProgressMode::kOff;
-  options.mpi = MpiMode::kOff;
-  ASSERT_TRUE(GenerateTable(scene, options).complete);
-  const Table table(options.output.string());
+  const Table table(GenerateCold(scene, dir / "table.h5"));
   const WheelsetTable wheelset(table);
 
   // Folded: yaw 0.002 and spin 0.001 ± 0.001 (right +, left −) are nodes on both sides.
