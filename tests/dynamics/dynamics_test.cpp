@@ -130,6 +130,29 @@ TEST(WheelsetDynamics, StiffCreepGivesKlingelsKinematicFrequency) {
   EXPECT_NEAR(h.growth_rate, 0.0, 0.05);  // neutral, as the kinematic motion is
 }
 
+TEST(WheelsetDynamics, LinearisedLoadsAreTheLinearContactsCoefficients) {
+  // The linear source is linear, so central differences give its coefficients up to
+  // rounding: 1e-9 relative to the largest of them.
+  LinearContact c = TestContact();
+  c.gravity_stiffness = 123.0;
+  const double v = 30000.0;
+  State at;
+  at.y = 0.7;
+  at.yaw = 2e-4;
+  const Eigen::Matrix<double, 2, 4> d =
+      LinearisedLoads(c, at, v, Eigen::Vector4d(0.25, 1e-4, 3.0, 4e-3));
+  const double b = c.semi_spacing;
+  Eigen::Matrix<double, 2, 4> expected;
+  expected << -c.gravity_stiffness, 2.0 * c.f22, -2.0 * c.f22 / v, 0.0,  //
+      -2.0 * c.f11 * b * c.conicity / c.nominal_radius, 0.0, 0.0, -2.0 * c.f11 * b * b / v;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_NEAR(d(i, j), expected(i, j), 1e-9 * expected.cwiseAbs().row(i).maxCoeff())
+          << i << "," << j;
+    }
+  }
+}
+
 TEST(WheelsetDynamics, ParameterFileErrorsNameTheKey) {
   const auto message = [](const std::string& text) {
     try {

@@ -236,6 +236,22 @@ ContactGeometry SceneGeometry(const Case& base, double wheel_load) {
 
 // ---- linear -----------------------------------------------------------------------------
 
+Eigen::Matrix<double, 2, 4> LinearisedLoads(const ForceSource& source, const State& at,
+                                            double velocity, const Eigen::Vector4d& h) {
+  Eigen::Matrix<double, 2, 4> d;
+  for (int j = 0; j < 4; ++j) {
+    State plus = at, minus = at;
+    double* p[4] = {&plus.y, &plus.yaw, &plus.vy, &plus.vyaw};
+    double* m[4] = {&minus.y, &minus.yaw, &minus.vy, &minus.vyaw};
+    *p[j] += h(j);
+    *m[j] -= h(j);
+    const ContactLoads a = source(plus, velocity), b = source(minus, velocity);
+    d(0, j) = (a.fy - b.fy) / (2.0 * h(j));
+    d(1, j) = (a.mz - b.mz) / (2.0 * h(j));
+  }
+  return d;
+}
+
 ContactLoads LinearContact::operator()(const State& s, double velocity) const {
   ContactLoads loads;
   loads.fy = -2.0 * f22 * (s.vy / velocity - s.yaw) - gravity_stiffness * s.y;

@@ -41,6 +41,8 @@ struct DynamicsOptions {
   std::vector<double> solver_speeds;  // m/s; empty: 0.8 and 1.2 times the table's critical speed
   int solver_bisections = 2;
   bool no_solver = false;
+  bool linear_only = false;
+  double linear_speed = 50.0;  // m/s, of the linearised contact
   double tolerance = 0.05;  // m/s, of the table's bisection
 };
 
@@ -114,6 +116,8 @@ class TableStudy {
   void WriteSpeedsCsv() const;
   void WriteHuntingPlot() const;
   void WriteSummary() const;
+  void Linearise();
+  void WriteLinearSummary(std::ostream& md) const;
 
   const DynamicsOptions& options_;
   fs::path out_;
@@ -134,6 +138,13 @@ class TableStudy {
     Hunting table, solver;
   };
   std::vector<Comparison> comparisons_;
+  // Linearised contact per source ("table", "solver") and lateral position (mm).
+  struct Linearisation {
+    std::string source;
+    double y;
+    Eigen::Matrix<double, 2, 4> d;
+  };
+  std::vector<Linearisation> linear_;
   double solver_roll_seconds_ = 0.0;
   long solver_roll_solves_ = 0;
   std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
@@ -306,6 +317,59 @@ void TableStudy::RunSolver() {
   }
 }
 
+// ∂(F_y, M_z)/∂(y, ψ, vy, vyaw) of both sources at y = 0 and at the initial disturbance.
+// Steps: 0.25 mm in y, and 1e-4 of creepage in the others (the creep forces bend within about
+// 4e-4, hunting at 1 mm lives at about 1e-4), vyaw's step giving 1e-4 at the nominal b.
+void TableStudy::Linearise() {
+  PrepareSolver();
+  const double v = 1000.0 * options_.linear_speed;
+  const Eigen::Vector4d h(0.25, 1e-4, 1e-4 * v, 1e-4 * v / geometry_.semi_spacing);
+  dynamics::SolverForces solver = *solver_forces_;
+  const dynamics::ForceSource sources[2] = {
+      [this](const dynamics::State& s, double speed) { return (*table_forces_)(s, speed); },
+      [&solver](const dynamics::State& s, double speed) { return solver(s, speed); }};
+  std::ofstream csv(out_ / "linear.csv");
+  csv << "source,y_mm,speed_m_s,dfy_dy,dfy_dyaw,dfy_dvy,dfy_dvyaw,dmz_dy,dmz_dyaw,dmz_dvy,"
+         "dmz_dvyaw\n";
+  csv.precision(8);
+  for (const double y : {0.0, parameters_.initial_y}) {
+    for (int k = 0; k < 2; ++k) {
+      dynamics::State at;
+      at.y = y;
+      const Linearisation l{k == 0 ? "table" : "solver", y,
+                            dynamics::LinearisedLoads(sources[k], at, v, h)};
+      csv << l.source << ',' << y << ',' << options_.linear_speed;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 4; ++j) csv << ',' << l.d(i, j);
+      csv << '\n';
+      linear_.push_back(l);
+    }
+  }
+}
+
+void TableStudy::WriteLinearSummary(std::ostream& md) const {
+  if (linear_.empty()) return;
+  static const char* const kNames[2][4] = {
+      {"∂Fy/∂y, N/mm", "∂Fy/∂ψ, N/rad", "∂Fy/∂vy, N·s/mm", "∂Fy/∂vyaw, N·s/rad"},
+      {"∂Mz/∂y, N·mm/mm", "∂Mz/∂ψ, N·mm/rad", "∂Mz/∂vy, N·mm·s/mm", "∂Mz/∂vyaw, N·mm·s/rad"}};
+  md << "## Linearised contact, table against solver\n\nThe resultant's derivatives at "
+     << options_.linear_speed << " m/s (central differences: 0.25 mm in y, 1e-4 of creepage in "
+        "ψ, vy and vyaw), in linear.csv. Where the two sources part, so do their hunting "
+        "frequency and critical speed.\n\n| derivative | y, mm | table | solver | table / solver "
+        "|\n|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k + 1 < linear_.size(); k += 2) {
+    const Linearisation &t = linear_[k], &s = linear_[k + 1];
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        md << "| " << kNames[i][j] << " | " << Fixed(t.y, 2) << " | " << FormatNumber(t.d(i, j))
+           << " | " << FormatNumber(s.d(i, j)) << " | " << Fixed(t.d(i, j) / s.d(i, j), 3)
+           << " |\n";
+      }
+    }
+  }
+  md << "\n";
+}
+
 void TableStudy::WriteSpeedsCsv() const {
   std::ofstream csv(out_ / "speeds.csv");
   csv << "source,speed_m_s,frequency_hz,growth_rate_1_s,max_abs_y_mm,flags,seconds,steps\n";
@@ -362,6 +426,7 @@ void TableStudy::WriteSummary() const {
      << "| solver | " << Fixed(solver_critical_, 2)
      << " | growth rate interpolated linearly between the solver runs that bracket zero |\n"
      << "| difference | " << Fixed(solver_critical_ - table_critical_, 2) << " | |\n\n";
+  WriteLinearSummary(md);
   md << "## Trajectories, table against solver\n\n| V, m/s | f table, Hz | f solver, Hz | growth "
         "table, 1/s | growth solver, 1/s | max abs Δy, mm | max abs Δψ, mrad | phase lag, ° | plot "
         "|\n"
@@ -410,9 +475,12 @@ void TableStudy::WriteSummary() const {
 
 int TableStudy::Run() {
   fs::create_directories(out_);
-  SweepTable();
-  BisectTable();
-  if (!options_.no_solver) RunSolver();
+  if (!options_.no_solver) Linearise();
+  if (!options_.linear_only) {
+    SweepTable();
+    BisectTable();
+    if (!options_.no_solver) RunSolver();
+  }
   WriteSpeedsCsv();
   WriteHuntingPlot();
   WriteSummary();
@@ -457,6 +525,12 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
                   "Solver runs that narrow its critical speed")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-solver", options->no_solver, "Table runs only");
+  cmd->add_flag("--linear-only", options->linear_only,
+                "Only the linearised contact of both sources (linear.csv, README.md)");
+  cmd->add_option("--linear-speed", options->linear_speed,
+                  "Speed of the linearised contact, m/s")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([options, exit_code]() {
     try {
       *exit_code = RunDynamicsStudy(*options);
