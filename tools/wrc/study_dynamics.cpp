@@ -43,7 +43,7 @@ struct DynamicsOptions {
   bool no_solver = false;
   bool linear_only = false;
   double linear_speed = 50.0;  // m/s, of the linearised contact
-  double tolerance = 0.05;  // m/s, of the table's bisection
+  double tolerance = 0.05;     // m/s, of the table's bisection
 };
 
 // Extrema before this are the transient of the initial disturbance, not hunting.
@@ -353,7 +353,8 @@ void TableStudy::WriteLinearSummary(std::ostream& md) const {
       {"∂Fy/∂y, N/mm", "∂Fy/∂ψ, N/rad", "∂Fy/∂vy, N·s/mm", "∂Fy/∂vyaw, N·s/rad"},
       {"∂Mz/∂y, N·mm/mm", "∂Mz/∂ψ, N·mm/rad", "∂Mz/∂vy, N·mm·s/mm", "∂Mz/∂vyaw, N·mm·s/rad"}};
   md << "## Linearised contact, table against solver\n\nThe resultant's derivatives at "
-     << options_.linear_speed << " m/s (central differences: 0.25 mm in y, 1e-4 of creepage in "
+     << options_.linear_speed
+     << " m/s (central differences: 0.25 mm in y, 1e-4 of creepage in "
         "ψ, vy and vyaw), in linear.csv. Where the two sources part, so do their hunting "
         "frequency and critical speed.\n\n| derivative | y, mm | table | solver | table / solver "
         "|\n|---|---|---|---|---|\n";
@@ -527,8 +528,7 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
   cmd->add_flag("--no-solver", options->no_solver, "Table runs only");
   cmd->add_flag("--linear-only", options->linear_only,
                 "Only the linearised contact of both sources (linear.csv, README.md)");
-  cmd->add_option("--linear-speed", options->linear_speed,
-                  "Speed of the linearised contact, m/s")
+  cmd->add_option("--linear-speed", options->linear_speed, "Speed of the linearised contact, m/s")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([options, exit_code]() {
