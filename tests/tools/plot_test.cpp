@@ -73,7 +73,8 @@ class Plot : public ::testing::Test {
       fs::copy_file(kSource / "tables" / "profiles" / name, dir_ / "profiles" / name);
     }
     fs::copy_file(kSource / "tables" / "hertz_demo.toml", dir_ / "hertz.toml");
-    std::ofstream(dir_ / "mbench.toml") << Coarse(ReadFile(kSource / "tables" / "mbench_case.toml"));
+    std::ofstream(dir_ / "mbench.toml")
+        << Coarse(ReadFile(kSource / "tables" / "mbench_case.toml"));
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -212,8 +213,7 @@ TEST_F(Plot, TableMapOverTwoAxes) {
   std::ofstream(dir_ / "tiny.toml") << TinyScene(
       "[table]\naxes = [\"y\", \"yaw\"]\ny = [-2.0, 0.0, 1.0]\nyaw = [-0.005, 0.005]\n");
   ASSERT_EQ(Run("generate tiny.toml -o tiny.h5 --quiet --threads 2"), 0) << Err();
-  ASSERT_EQ(Run("plot table tiny.h5 --output fx --x y --y yaw --samples 21 --out out"), 0)
-      << Err();
+  ASSERT_EQ(Run("plot table tiny.h5 --output fx --x y --y yaw --samples 21 --out out"), 0) << Err();
   ExpectPicture(dir_ / "out" / "table_fx_y_yaw.png");
   EXPECT_EQ(Numbers(dir_ / "out" / "table_fx_y_yaw_nodes.dat").size(), 6u);
   const auto map = Numbers(dir_ / "out" / "table_fx_y_yaw.dat");

@@ -129,7 +129,8 @@ void AddProfiles(CLI::App& plot, int* exit_code) {
   auto out = std::make_shared<std::string>("plot-profiles");
   cmd->add_option("CASE", *case_path, "Wheel-rail case file (TOML)")->required();
   cmd->add_option("--out", *out, "Output directory (PNG, data, script)")->capture_default_str();
-  cmd->callback([=]() { RunPlot("profiles", exit_code, [&] { return PlotProfiles(*case_path, *out); }); });
+  cmd->callback(
+      [=]() { RunPlot("profiles", exit_code, [&] { return PlotProfiles(*case_path, *out); }); });
 }
 
 void AddTable(CLI::App& plot, int* exit_code) {

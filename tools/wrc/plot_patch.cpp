@@ -91,9 +91,9 @@ void WriteMap(const fs::path& path, const PatchFields& f) {
   for (int j = 0; j < f.ny; ++j) {
     for (int i = 0; i < f.nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * f.nx + i;
-      dat << f.x[k] << ' ' << f.s[k] << ' ' << f.pn[k] << ' ' << std::hypot(f.px[k], f.ps[k])
-          << ' ' << f.px[k] << ' ' << f.ps[k] << ' ' << f.state[k] << ' '
-          << std::hypot(f.wx[k], f.ws[k]) << ' ' << f.wx[k] << ' ' << f.ws[k] << '\n';
+      dat << f.x[k] << ' ' << f.s[k] << ' ' << f.pn[k] << ' ' << std::hypot(f.px[k], f.ps[k]) << ' '
+          << f.px[k] << ' ' << f.ps[k] << ' ' << f.state[k] << ' ' << std::hypot(f.wx[k], f.ws[k])
+          << ' ' << f.wx[k] << ' ' << f.ws[k] << '\n';
     }
     dat << '\n';
   }
@@ -161,13 +161,16 @@ std::string PatchScript(const std::string& stem, const PatchFields& f, const std
   const double s0 = f.s.front() - 0.5 * f.ds, s1 = f.s.back() + 0.5 * f.ds;
   // Panels of equal aspect laid out 2 × 2; the canvas takes the patch's shape.
   const double aspect = std::clamp((s1 - s0) / (x1 - x0), 0.3, 3.0);
-  const int width = 1300, height = static_cast<int>(std::clamp(220 + 520 * aspect, 500.0, 1400.0));
+  // Each panel about 560 px wide; its height follows, plus title, labels and the colour box.
+  const int width = 1300;
+  const int height =
+      static_cast<int>(std::clamp(140.0 + 2.0 * (560.0 * aspect + 80.0), 500.0, 1600.0));
   const std::string arrow_style = " with vectors head size graph 0.012,25 lc rgb '#000000' notitle";
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size " << width << ',' << height << " font ',10'\n"
      << "set output '" << stem << ".png'\n"
-     << "set size ratio -1\nset xrange [" << x0 << ':' << x1 << "]\nset yrange [" << s0 << ':'
-     << s1 << "]\n"
+     << "set size ratio -1\nset xrange [" << x0 << ':' << x1 << "]\nset yrange [" << s0 << ':' << s1
+     << "]\n"
      << "set xlabel 'x, mm (rolling direction)'\nset ylabel 's, mm (lateral, along the "
         "contact)'\nset tics out\n"
      << "set multiplot layout 2,2 title \"" << title << "\" font ',11'\n"
@@ -175,8 +178,7 @@ std::string PatchScript(const std::string& stem, const PatchFields& f, const std
               "set palette defined (0 '#ffffff', 1 '#fee391', 2 '#fe9929', 3 '#cc4c02', 4 "
               "'#662506')\n",
               "set cbrange [0:*]\n", "")
-     << Panel(stem, "tangential traction |(px, ps)|, N/mm2 (arrows: direction and size)", 4,
-              "", "",
+     << Panel(stem, "tangential traction |(px, ps)|, N/mm2 (arrows: direction and size)", 4, "", "",
               ", '" + stem + "_arrows.dat' using 1:2:3:4" + arrow_style)
      << Panel(stem, "state", 7,
               "set palette defined (0 '#e8e8e8', 0.999 '#e8e8e8', 1 '#4393c3', 1.999 "

@@ -194,9 +194,9 @@ void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& 
     const Eigen::Vector2d tail = ref - kNormalLength * normal;
     nor << tail(0) << ' ' << tail(1) << ' ' << kNormalLength * normal(0) << ' '
         << kNormalLength * normal(1) << ' ' << angle * 180.0 / M_PI << '\n';
-    *labels += "set label " + std::to_string(n + 1) + " 'patch " + std::to_string(n + 1) +
-               ": " + Short(angle * 180.0 / M_PI, 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
-               Short(tail(0), 6) + "," + Short(tail(1), 6) + " offset char 1,0 front\n";
+    *labels += "set label " + std::to_string(n + 1) + " 'patch " + std::to_string(n + 1) + ": " +
+               Short(angle * 180.0 / M_PI, 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
+               Short(tail(0), 6) + "," + Short(tail(1), 6) + " offset char 1,0.5 front\n";
   }
 }
 
@@ -205,7 +205,7 @@ struct View {
   double y0 = 0.0, y1 = 0.0, z0 = 0.0, z1 = 0.0;
 };
 
-View ViewOf(const fs::path& rail, const fs::path& wheel) {
+View ViewOf(const fs::path& rail, const fs::path& wheel, const fs::path& normals) {
   double ry0 = 1e300, ry1 = -1e300, wy0 = 1e300, wy1 = -1e300, z0 = 1e300, z1 = -1e300;
   auto scan = [&](const fs::path& path, double& y0, double& y1) {
     std::ifstream in(path);
@@ -223,6 +223,7 @@ View ViewOf(const fs::path& rail, const fs::path& wheel) {
   };
   scan(rail, ry0, ry1);
   scan(wheel, wy0, wy1);
+  scan(normals, wy0, wy1);  // the normals' tails, above the contact
   View v;
   const double margin = 5.0;  // mm
   v.y0 = std::min(ry0, wy0) - margin;
@@ -247,12 +248,12 @@ std::string ProfilesScript(const View& v, const GapRange& gap, const std::string
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size " << width_px << ',' << static_cast<int>(height_px)
      << " font ',10'\nset output 'profiles.png'\nset multiplot title \"" << title << "\"\n"
-     << "set lmargin at screen " << sx(left) << "\nset rmargin at screen "
-     << sx(width_px - right) << "\nset tmargin at screen " << sy(top) << "\nset bmargin at screen "
-     << sy(top + upper_h) << "\n"
+     << "set lmargin at screen " << sx(left) << "\nset rmargin at screen " << sx(width_px - right)
+     << "\nset tmargin at screen " << sy(top) << "\nset bmargin at screen " << sy(top + upper_h)
+     << "\n"
      << "set xrange [" << v.y0 << ':' << v.y1 << "]\nset yrange [" << v.z1 << ':' << v.z0
      << "]\nset size ratio -1\n"
-     << "set grid\nset format x ''\nset ylabel 'z, mm (down)'\nset key bottom right box opaque\n"
+     << "set grid\nset format x ''\nset ylabel 'z, mm (down)'\nset key top left box opaque\n"
      << labels
      << "plot 'profiles_rail.dat' with lines lw 2 lc rgb '#404040' title 'rail', "
         "'profiles_wheel.dat' with lines lw 2 lc rgb '#2166ac' title 'wheel (principal plane)', "
@@ -262,8 +263,8 @@ std::string ProfilesScript(const View& v, const GapRange& gap, const std::string
      << "unset label\nset size noratio\nset tmargin at screen " << sy(top + upper_h + 60.0)
      << "\nset bmargin at screen " << sy(top + upper_h + 60.0 + gap_px) << "\n"
      << "set format x '%g'\nset xlabel 'y, mm (track frame, lateral)'\n"
-     << "set ylabel 'gap, mm'\nset yrange [" << std::min(-0.05, 1.2 * gap.gap_min) << ':'
-     << gap_top << "]\nset key top right box opaque\n"
+     << "set ylabel 'gap, mm'\nset yrange [" << std::min(-0.05, 1.2 * gap.gap_min) << ':' << gap_top
+     << "]\nset key top right box opaque\n"
      << "plot 'profiles_gap.dat' using 1:2 with lines lw 2 lc rgb '#1b7837' title 'gap between "
         "the undeformed profiles (negative: interpenetration)', 0 with lines dt 2 lc rgb "
         "'#000000' notitle\n"
@@ -306,8 +307,8 @@ WrittenFiles PlotProfiles(const fs::path& case_path, const fs::path& out) {
   const GapRange gap = WriteGap(written[2], rail, wheel, pose.mirror);
   std::string labels;
   WritePatches(written[3], written[4], pose, &labels);
-  const std::string script =
-      ProfilesScript(ViewOf(written[0], written[1]), gap, ProfilesTitle(c, pose), labels);
+  const std::string script = ProfilesScript(ViewOf(written[0], written[1], written[4]), gap,
+                                            ProfilesTitle(c, pose), labels);
   if (!RunGnuplot(out, "profiles.gp", script)) {
     std::cerr << "wrc plot profiles: gnuplot failed on " << (out / "profiles.gp").string()
               << " (is gnuplot installed?); the data is written\n";

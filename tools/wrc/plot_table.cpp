@@ -29,8 +29,8 @@ int AxisIndex(const Table& table, const std::string& name, const std::string& op
   const std::vector<std::string> names = table.axis_names();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end()) {
-    throw InputError(option + " " + name + ": the table has no such axis (its axes: " +
-                     Joined(names) + ")");
+    throw InputError(option + " " + name +
+                     ": the table has no such axis (its axes: " + Joined(names) + ")");
   }
   return static_cast<int>(it - names.begin());
 }
@@ -39,8 +39,8 @@ int OutputIndex(const Table& table, const std::string& name) {
   const std::vector<std::string> names = table.output_names();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end()) {
-    throw InputError("--output " + name + ": the table has no such output (its outputs: " +
-                     Joined(names) + ")");
+    throw InputError("--output " + name +
+                     ": the table has no such output (its outputs: " + Joined(names) + ")");
   }
   return static_cast<int>(it - names.begin());
 }
@@ -127,7 +127,8 @@ std::string Slice(const Table& table, const TablePlotRequest& r, const std::stri
   }
   std::ostringstream gp;
   gp << "set xlabel '" << Label(table, ax) << "'\nset ylabel '" << r.output << ", "
-     << table.output_unit(output) << "'\nset key top left box opaque\n"
+     << table.output_unit(output) << "'\nset key top left box opaque\nset xrange [" << nodes.front()
+     << ':' << nodes.back() << "]\n"
      << "plot '" << stem << ".dat' using 1:2 with lines lw 2 lc rgb '#2166ac' title '"
      << (r.cubic ? "cubic" : "multilinear") << " interpolation', '" << stem
      << "_nodes.dat' using 1:2 with points pt 7 ps 0.8 lc rgb '#b2182b' title 'table nodes ("
@@ -167,13 +168,16 @@ std::string Map(const Table& table, const TablePlotRequest& r, const std::string
   }
   std::ostringstream gp;
   gp << "set xlabel '" << Label(table, ax) << "'\nset ylabel '" << Label(table, ay)
-     << "'\nset cblabel '" << r.output << ", " << table.output_unit(output) << "'\n"
-     << "set palette defined (0 '#2166ac', 0.5 '#f7f7f7', 1 '#b2182b')\n"
+     << "'\nset cblabel '" << r.output << ", " << table.output_unit(output)
+     << "'\n"
+     // A sequential palette (dark to light, viridis-like): the value, not its sign, matters.
+     << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 "
+        "'#fde725')\n"
      << "set xrange [" << xn.front() << ':' << xn.back() << "]\nset yrange [" << yn.front() << ':'
-     << yn.back() << "]\nset key below\n"
+     << yn.back() << "]\nset label 1 'dots: the " << xn.size() << " x " << yn.size()
+     << " table nodes' at graph 0.01, graph -0.08 left\n"
      << "plot '" << stem << ".dat' using 1:2:3 with image notitle, '" << stem
-     << "_nodes.dat' using 1:2 with points pt 7 ps 0.35 lc rgb '#000000' title 'table nodes ("
-     << xn.size() << " x " << yn.size() << ")'\n";
+     << "_nodes.dat' using 1:2 with points pt 7 ps 0.35 lc rgb '#000000' notitle\n";
   return gp.str();
 }
 

@@ -23,7 +23,6 @@ using nlohmann::json;
 
 namespace {
 
-
 int ExitCodeFor(SolverStatus s) {
   return s == SolverStatus::kNotConverged ? kExitNotConverged : kExitOk;
 }
