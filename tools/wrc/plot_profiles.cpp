@@ -182,10 +182,21 @@ void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& 
     const PatchResult& p = pose.patches[n];
     const auto rows = ContactRows(p);
     if (!rows) continue;
+    // The rows' centres, and half an element beyond the outer ones: the contact's edges.
+    const double half = 0.5 * p.grid.dy;
+    auto edge = [&](int j, int inward) {
+      const Eigen::Vector2d c = PatchPoint(p, pose.mirror, j, p.grid.y(j));
+      const int k = std::clamp(j + inward, 0, p.grid.ny - 1);
+      if (k == j) return c;
+      const Eigen::Vector2d d = PatchPoint(p, pose.mirror, k, p.grid.y(k)) - c;
+      return Eigen::Vector2d(c - half * d / d.norm());
+    };
+    std::vector<Eigen::Vector2d> points{edge(rows->first, 1)};
     for (int j = rows->first; j <= rows->second; ++j) {
-      const Eigen::Vector2d q = PatchPoint(p, pose.mirror, j, p.grid.y(j));
-      ext << q(0) << ' ' << q(1) << '\n';
+      points.push_back(PatchPoint(p, pose.mirror, j, p.grid.y(j)));
     }
+    points.push_back(edge(rows->second, -1));
+    for (const Eigen::Vector2d& q : points) ext << q(0) << ' ' << q(1) << '\n';
     ext << "\n\n";
     // In the case's frame the normal into the rail is (−sin δ, cos δ) with δ the contact angle.
     const double angle = p.contact_angle;
