@@ -164,13 +164,13 @@ std::string PatchScript(const std::string& stem, const PatchFields& f, const std
   // Each panel about 560 px wide; its height follows, plus title, labels and the colour box.
   const int width = 1300;
   const int height =
-      static_cast<int>(std::clamp(140.0 + 2.0 * (560.0 * aspect + 80.0), 500.0, 1600.0));
+      static_cast<int>(std::clamp(140.0 + 2.0 * (470.0 * aspect + 80.0), 500.0, 1600.0));
   const std::string arrow_style = " with vectors head size graph 0.012,25 lc rgb '#000000' notitle";
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size " << width << ',' << height << " font ',10'\n"
      << "set output '" << stem << ".png'\n"
-     << "set size ratio -1\nset xrange [" << x0 << ':' << x1 << "]\nset yrange [" << s0 << ':' << s1
-     << "]\n"
+     << "set size ratio -1\nset rmargin 12\nset xrange [" << x0 << ':' << x1 << "]\nset yrange ["
+     << s0 << ':' << s1 << "]\n"
      << "set xlabel 'x, mm (rolling direction)'\nset ylabel 's, mm (lateral, along the "
         "contact)'\nset tics out\n"
      << "set multiplot layout 2,2 title \"" << title << "\" font ',11'\n"
