@@ -487,6 +487,7 @@ void MirrorResult(WheelRailResult& r) {
     p.cphi = -p.cphi;
     for (double& v : p.ps) v = -v;
     for (double& v : p.ss) v = -v;
+    for (double& v : p.ws) v = -v;  // the rigid part of ss, mirrored with it
     for (double& v : p.curve_y) v = -v;
     for (double& v : p.curve_angle) v = -v;
   }

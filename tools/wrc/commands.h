@@ -27,6 +27,9 @@ void AddCostStudies(CLI::App& study, int* exit_code);
 /// Adds `dynamics` (a wheelset on table and on solver forces) to `wrc study`.
 void AddDynamicsStudy(CLI::App& study, int* exit_code);
 
+/// Registers `wrc plot` (patch, profiles, table; docs/plots.md).
+void AddPlotCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc study` (stability, solver accuracy against cost).
 void AddStudyCommand(CLI::App& app, int* exit_code);
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/solve_output.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/halfspace.h"
@@ -17,9 +18,10 @@
 #include "wrc/wheelrail.h"
 
 namespace wrc::cli {
-namespace {
 
 using nlohmann::json;
+
+namespace {
 
 int ExitCodeFor(SolverStatus s) {
   return s == SolverStatus::kNotConverged ? kExitNotConverged : kExitOk;
@@ -45,6 +47,12 @@ void PrintHuman(const json& j) {
   }
   std::cout << "time " << j["timing_s"]["total"] << " s\n";
 }
+
+json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
+  return {{a, v(0)}, {b, v(1)}, {c, v(2)}};
+}
+
+}  // namespace
 
 json HalfspaceJson(const HalfspaceResult& r, double seconds) {
   json patch = {{"fn", r.fn},
@@ -98,10 +106,6 @@ void WriteHalfspaceFields(const std::filesystem::path& dir, const HalfspaceResul
   }
   WriteFileAtomically(dir / "fields.csv", out.str());
   WriteFileAtomically(dir / "summary.json", summary.dump(1) + '\n');
-}
-
-json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
-  return {{a, v(0)}, {b, v(1)}, {c, v(2)}};
 }
 
 json WheelRailJson(const WheelRailResult& r, double seconds) {
@@ -196,8 +200,6 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
   }
   WriteFileAtomically(dir / "summary.json", summary.dump(1) + '\n');
 }
-
-}  // namespace
 
 void AddSolveCommand(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand(

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
@@ -31,8 +32,6 @@ namespace fs = std::filesystem;
 double Seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-
-int Shell(const std::string& command) { return std::system(command.c_str()); }
 
 // ---- solver: accuracy against element size and time ------------------------------------------
 
@@ -75,17 +74,77 @@ SolverRow SolveTimed(const Case& c) {
 }
 
 // Writes the gnuplot script and runs it; a missing gnuplot costs the picture, not the data.
-void RunGnuplot(const fs::path& dir, const std::string& script_name, const std::string& script,
-                const std::string& study) {
-  std::ofstream(dir / script_name) << script;
-  if (Shell("cd '" + dir.string() + "' && gnuplot '" + script_name + "'") != 0) {
+void DrawStudy(const fs::path& dir, const std::string& script_name, const std::string& script,
+               const std::string& study) {
+  if (!RunGnuplot(dir, script_name, script)) {
     std::cerr << "wrc study " << study << ": gnuplot failed (is gnuplot installed?); the data is "
               << "in " << dir.string() << '\n';
   }
 }
 
+// The error of fy of `r` against the finest solve of its case, as a fraction of that solve's fz.
+double FyError(const std::vector<SolverRow>& rows, const SolverRow& r, double finest) {
+  for (const SolverRow& f : rows) {
+    if (f.name == r.name && f.size == finest) {
+      const double load = std::fabs(f.fz) > 0.0 ? std::fabs(f.fz) : 1.0;
+      return std::fabs(r.fy - f.fy) / load;
+    }
+  }
+  return NAN;
+}
+
+// One data block per case (gnuplot's `index`): element size, time per solve, error of fy, and
+// whether the size is the case's own (as its file gives it). The finest size is the reference
+// and has no error to draw on the logarithmic axis, so it is left out.
+void WriteSolverLines(const fs::path& path, const std::vector<SolverRow>& rows,
+                      const std::vector<std::string>& names, double finest,
+                      const std::vector<double>& own_size) {
+  std::ofstream dat(path);
+  dat.precision(8);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    dat << (k ? "\n\n" : "") << "# " << names[k] << "\n# element_mm seconds err_fy_rel_load own\n";
+    for (const SolverRow& r : rows) {
+      if (r.name != names[k] || r.size == finest) continue;
+      dat << r.size << ' ' << r.seconds << ' ' << FyError(rows, r, finest) << ' '
+          << (r.size == own_size[k] ? 1 : 0) << '\n';
+    }
+  }
+}
+
+// Error of fy against time: each case its own coloured line through its element sizes (labelled
+// at each point), and a ring around the solves at each case's own element size.
+void DrawSolverPicture(const fs::path& out, const std::vector<SolverRow>& rows,
+                       const std::vector<double>& sizes, const std::vector<double>& own_size) {
+  std::vector<std::string> names;
+  for (const SolverRow& r : rows) {
+    if (std::find(names.begin(), names.end(), r.name) == names.end()) names.push_back(r.name);
+  }
+  WriteSolverLines(out / "solver_lines.dat", rows, names, sizes.back(), own_size);
+  // Colours that stay apart on white (ColorBrewer's Dark2), repeated beyond eight cases.
+  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a",
+                           "#66a61e", "#a6761d", "#e6ab02", "#666666"};
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1000,650 font ',10'\nset output 'solver.png'\n"
+     << "set logscale xy\nset format xy '%g'\nset grid\n"
+     << "set key outside right top box opaque Left reverse width 1\n"
+     << "set xlabel 'time per solve, s'\n"
+     << "set ylabel 'error of fy against " << sizes.back() << " mm elements, fraction of fz'\n"
+     << "set title 'Solver accuracy against cost (point labels: element size dx = ds, mm)'\n"
+     << "set offsets graph 0.05, graph 0.1, graph 0.05, graph 0.05\nplot ";
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string colour = std::string("rgb '") + colours[k % 8] + "'";
+    gp << "'solver_lines.dat' index " << k << " using 2:3 with linespoints lw 2 pt 7 lc " << colour
+       << " title '" << names[k] << "', '' index " << k
+       << " using 2:3:(sprintf('%g', $1)) with labels offset char 1.2,0.6 tc " << colour
+       << " notitle, ";
+  }
+  gp << "'solver_lines.dat' using 2:($4 > 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc "
+        "rgb 'black' title \"the case file's own element size\"\n";
+  DrawStudy(out, "solver.gp", gp.str(), "solver");
+}
+
 void WriteSolverReport(const fs::path& out, const std::vector<SolverRow>& rows,
-                       const std::vector<double>& sizes) {
+                       const std::vector<double>& sizes, const std::vector<double>& own_size) {
   std::ofstream csv(out / "solver.csv");
   csv << "case,element_mm,seconds,status,fx,fy,fz,z,err_fx_rel_load,err_fy_rel_load,err_z_um\n";
   csv.precision(8);
@@ -113,19 +172,10 @@ void WriteSolverReport(const fs::path& out, const std::vector<SolverRow>& rows,
                   r.name.c_str(), r.size, r.seconds, r.status.c_str(), efx, efy, ez);
     md << line;
   }
-  md << "\nData: `solver.csv`; picture: `solver.png` (error of fy against time per solve).\n";
+  md << "\nData: `solver.csv`; picture: `solver.png` (error of fy against time per solve, one "
+        "line per case; `solver_lines.dat` holds what it draws).\n";
   csv.close();
-  RunGnuplot(out, "solver.gp",
-             "set terminal pngcairo noenhanced size 900,600 font ',10'\nset output 'solver.png'\n"
-             "set datafile separator ','\nset key autotitle columnhead\nset logscale xy\n"
-             "set grid\nset xlabel 'time per solve, s'\n"
-             "set ylabel 'error of fy against the finest elements, fraction of fz'\n"
-             "set title 'Solver accuracy against cost'\n"
-             "plot 'solver.csv' using 3:($10>0?$10:1/0):(sprintf('%.2g', $2)) with labels "
-             "offset 1,0.5 notitle, '' using 3:($10>0?$10:1/0) with points pt 7 title 'one solve "
-             "(label: element size, "
-             "mm)'\n",
-             "solver");
+  DrawSolverPicture(out, rows, sizes, own_size);
 }
 
 // Solver accuracy against cost: each case at each element size, errors against the finest.
@@ -146,7 +196,9 @@ int StudySolver(const std::vector<std::string>& case_paths, std::vector<double> 
       rows.push_back(row);
     }
   }
-  WriteSolverReport(out, rows, sizes);
+  std::vector<double> own_size;  // each case's element size as its file gives it
+  for (const Case& c : cases) own_size.push_back(c.grid.dx);
+  WriteSolverReport(out, rows, sizes, own_size);
   std::cerr << "solver study: report in " << (out / "solver.md").string() << '\n';
   return kExitOk;
 }
@@ -278,7 +330,7 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
         "'uniform, cubic', 'tables_refined.dat' using 1:2 with linespoints pt 7 lc rgb '#2166ac' "
         "title 'refined, multilinear', '' using 1:3 with linespoints pt 6 lc rgb '#67a9cf' title "
         "'refined, cubic', 1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
-  RunGnuplot(out, "tables.gp", gp.str(), "tables");
+  DrawStudy(out, "tables.gp", gp.str(), "tables");
 }
 
 // One table of the study: generated, timed and verified; *axes receives its nodes.

@@ -21,6 +21,7 @@
 #include "tools/dynamics/forces.h"
 #include "tools/dynamics/model.h"
 #include "tools/wrc/commands.h"
+#include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
 #include "wrc/errors.h"
 #include "wrc/runtime.hpp"
@@ -266,7 +267,7 @@ void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
         "with lines dt 2 lw 2 title 'solver'\n"
      << "unset multiplot\n";
   gp.close();
-  if (std::system(("cd '" + out_.string() + "' && gnuplot '" + stem + ".gp' 2>&1").c_str()) != 0) {
+  if (!RunGnuplotScript(stem + ".gp", out_)) {
     std::cerr << "wrc study dynamics: gnuplot failed for " << stem << ".gp\n";
   }
 }
@@ -406,7 +407,7 @@ void TableStudy::WriteHuntingPlot() const {
         "'' using (strcol(1) eq 'solver' ? $2 : 1/0):3 with points pt 5 ps 1.5 title 'solver'\n"
      << "unset multiplot\n";
   gp.close();
-  if (std::system(("cd '" + out_.string() + "' && gnuplot hunting.gp 2>&1").c_str()) != 0) {
+  if (!RunGnuplotScript("hunting.gp", out_)) {
     std::cerr << "wrc study dynamics: gnuplot failed for hunting.gp\n";
   }
 }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/gnuplot.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/wheelrail.h"
@@ -222,9 +223,7 @@ void Plot(const fs::path& dir, const Sweep& sweep, const std::vector<std::string
   }
   gp << "\nunset multiplot\n";
   gp.close();
-  const std::string cmd =
-      "cd '" + dir.string() + "' && gnuplot '" + script.filename().string() + "' 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
+  if (!RunGnuplotScript(script.filename(), dir)) {
     std::cerr << "wrc study stability: gnuplot failed for " << sweep.name
               << " (is gnuplot-nox installed?)\n";
   }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
 #include "wrc/errors.h"
 #include "wrc/runtime.hpp"
@@ -199,8 +200,7 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
        << "plot '" << data.string() << "' using 1:2:3 with image notitle, '" << nodes.string()
        << "' using 1:2:3:4 with vectors nohead lc rgb '#60000000' lw 0.5 notitle\n";
   }
-  const std::string command = "gnuplot '" + script.string() + "' 2>&1";
-  if (std::system(command.c_str()) != 0) {
+  if (!RunGnuplotScript(script)) {
     throw InputError("gnuplot failed to draw " + png.string() + " (is gnuplot installed?)");
   }
   std::cerr << "wrc verify: wrote " << png.string() << " (" << output << " over "

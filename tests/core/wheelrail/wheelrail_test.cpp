@@ -152,9 +152,19 @@ TEST(WheelRail, LeftSideMirrorsRightSide) {
     left.wheelset.side = WheelSide::kLeft;
     left.state.y = -4.0;
     left.state.yaw = -0.004;
-    const WheelRailResult a = SolveWheelRail(right);
-    const WheelRailResult b = SolveWheelRail(left);
+    WheelRailOptions fields;
+    fields.keep_fields = true;
+    const WheelRailResult a = SolveWheelRail(right, fields);
+    const WheelRailResult b = SolveWheelRail(left, fields);
     ASSERT_EQ(a.patches.size(), b.patches.size());
+    // Lateral slips, total and rigid alike, change sign with the mirror; longitudinal ones not.
+    const PatchResult &pa = a.patches[0], &pb = b.patches[0];
+    ASSERT_EQ(pa.ws.size(), pb.ws.size());
+    for (std::size_t k = 0; k < pa.ws.size(); ++k) {
+      EXPECT_NEAR(pb.ws[k], -pa.ws[k], 1e-12);  // slips ~1e-3: round-off far below
+      EXPECT_NEAR(pb.ss[k], -pa.ss[k], 1e-12);
+      EXPECT_NEAR(pb.wx[k], pa.wx[k], 1e-12);
+    }
     // Identical arithmetic up to the order of operations: 1e-9 of the load.
     const double tol = 1e-9 * a.force_T(2);
     EXPECT_NEAR(b.force_T(0), a.force_T(0), tol);

@@ -1,0 +1,333 @@
+// `wrc plot profiles`: wheel and rail of a wheel–rail case in place (track frame, y lateral, z
+// down) at the solved wheelset pose, the contact patches along the rail with their normals, and
+// the gap between the undeformed profiles along the rail.
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/wheelrail/contact_search.h"
+#include "core/wheelrail/geometry.h"
+#include "tools/wrc/gnuplot.h"
+#include "tools/wrc/plot.h"
+#include "wrc/case.h"
+#include "wrc/errors.h"
+#include "wrc/profile.h"
+#include "wrc/wheelrail.h"
+
+namespace wrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Points along each profile for the drawing: finer than any feature that matters at the
+// picture's scale (about 0.1 mm per pixel).
+constexpr double kDrawStep = 0.1;
+// Length of the drawn contact normals, mm: long enough to be seen beside a 100 mm profile.
+constexpr double kNormalLength = 12.0;
+
+// What the drawing needs of a solve; everything in the right-side equivalent frame (a left case
+// is solved, and drawn, as its mirror image, then mirrored back for the files).
+struct Pose {
+  wr::WheelsetKinematics kin;
+  double mirror = 1.0;
+  bool solved = false;
+  std::vector<PatchResult> patches;
+};
+
+std::shared_ptr<const ProfileSpline> Spline(const ProfileSource& source, ProfileKind kind) {
+  if (source.spline) return source.spline;
+  return std::make_shared<const ProfileSpline>(
+      ReadProfile(source.path.string(), kind, ProfileOptionsOf(source)));
+}
+
+// The smallest gap of a search at wheelset height 0: the height of first contact.
+double FirstContact(const wr::ContactSearch& search) {
+  double first = std::numeric_limits<double>::infinity();
+  for (const wr::LocusSample& s : search.samples) {
+    if (s.valid) first = std::min(first, s.gap);
+  }
+  return first;
+}
+
+// Solves the case for its wheelset height and patches. A case that does not solve (an fz that
+// no height carries, a patch too large) is still drawn, at its prescribed z or at first
+// contact, without patches: the picture then shows what is wrong with the placement.
+Pose SolvePose(const Case& c, const wr::PlacedRail& rail,
+               const std::shared_ptr<const ProfileSpline>& wheel) {
+  Pose pose;
+  pose.mirror = c.wheelset.side == WheelSide::kLeft ? -1.0 : 1.0;
+  pose.kin.y = pose.mirror * c.state.y;
+  pose.kin.roll = pose.mirror * c.state.roll;
+  pose.kin.yaw = pose.mirror * c.state.yaw;
+  try {
+    WheelRailOptions options;
+    options.keep_fields = true;
+    WheelRailResult r = SolveWheelRail(c, options);
+    pose.kin.z = r.z;
+    pose.solved = true;
+    pose.patches = std::move(r.patches);
+  } catch (const InputError& e) {
+    std::cerr << "wrc plot profiles: the case does not solve (" << e.what()
+              << "); the profiles are drawn without contact patches\n";
+    if (c.state.z) {
+      pose.kin.z = *c.state.z;
+    } else {
+      const wr::PlacedWheel at_zero(wheel, c.wheelset, pose.kin);
+      pose.kin.z = FirstContact(wr::SearchContact(rail, at_zero, kDrawStep, 0.0));
+      if (!std::isfinite(pose.kin.z)) pose.kin.z = 0.0;
+    }
+  }
+  return pose;
+}
+
+std::vector<double> Steps(double length) {
+  const int n = std::max(2, static_cast<int>(std::ceil(length / kDrawStep)));
+  std::vector<double> s(n + 1);
+  for (int k = 0; k <= n; ++k) s[k] = length * k / n;
+  return s;
+}
+
+// The rail's surface in the track frame: y z per line.
+void WriteRail(const fs::path& path, const wr::PlacedRail& rail, double mirror) {
+  std::ofstream dat(path);
+  dat << "# rail surface, track frame: y_mm z_mm (z down)\n";
+  for (const Eigen::Vector2d& p : rail.PositionsAt(Steps(rail.length()))) {
+    dat << mirror * p(0) << ' ' << p(1) << '\n';
+  }
+}
+
+// The wheel's profile in its principal plane (x_w = 0, the lowest points of the wheel), placed
+// by the wheelset's pose: p_T = p_TWo + R_TW·(0, offset + y_w, r_nom + z_w).
+void WriteWheel(const fs::path& path, const wr::PlacedWheel& wheel, double mirror) {
+  std::ofstream dat(path);
+  dat << "# wheel profile in the wheelset's principal plane, track frame: y_mm z_mm (z down)\n";
+  const ProfileSpline& spline = wheel.spline();
+  for (const ProfileVector& pw : spline.PositionsAt(Steps(spline.length()))) {
+    const Eigen::Vector3d q(0.0, wheel.profile_offset() + pw.y, wheel.nominal_radius() + pw.z);
+    const Eigen::Vector3d p = wheel.p_TWo_T() + wheel.R_TW() * q;
+    dat << mirror * p(1) << ' ' << p(2) << '\n';
+  }
+}
+
+// The gap along the rail at the contact locus (the smallest vertical distance between the
+// undeformed surfaces over x at each rail point), at the drawn wheelset height; negative where
+// they interpenetrate.
+struct GapRange {
+  double y_min = 1e300, y_max = -1e300, gap_min = 1e300;
+};
+
+GapRange WriteGap(const fs::path& path, const wr::PlacedRail& rail, const wr::PlacedWheel& wheel,
+                  double mirror) {
+  // A reach far beyond any profile's height locates the wheel above every rail point.
+  constexpr double kEverywhere = 1e3;
+  const wr::ContactSearch search = wr::SearchContact(rail, wheel, kDrawStep, kEverywhere);
+  std::ofstream dat(path);
+  dat << "# gap along the rail at the drawn wheelset height: y_mm (rail point, track frame) "
+         "gap_mm (vertical, negative: interpenetration) x_mm (contact locus)\n";
+  GapRange range;
+  for (const wr::LocusSample& s : search.samples) {
+    if (!s.valid || !std::isfinite(s.gap)) continue;
+    dat << mirror * s.y << ' ' << s.gap << ' ' << s.x << '\n';
+    range.y_min = std::min(range.y_min, mirror * s.y);
+    range.y_max = std::max(range.y_max, mirror * s.y);
+    range.gap_min = std::min(range.gap_min, s.gap);
+  }
+  return range;
+}
+
+// Rows j of a patch's grid that hold an element in contact: first and last, or nullopt.
+std::optional<std::pair<int, int>> ContactRows(const PatchResult& p) {
+  int first = -1, last = -1;
+  for (int j = 0; j < p.grid.ny; ++j) {
+    for (int i = 0; i < p.grid.nx; ++i) {
+      if (p.pn[p.grid.index(i, j)] > 0.0) {
+        if (first < 0) first = j;
+        last = j;
+        break;
+      }
+    }
+  }
+  if (first < 0) return std::nullopt;
+  return std::make_pair(first, last);
+}
+
+// Track-frame point (y, z) of lateral position s (row j) of a patch in the case's frame. The
+// curved reference's curve is stored in that frame; the planar one is a line through the
+// reference along (cos δ, sin δ) in the right-side equivalent frame (s is not mirrored).
+Eigen::Vector2d PatchPoint(const PatchResult& p, double mirror, int j, double s) {
+  if (!p.curve_y.empty()) return {p.curve_y[j], p.curve_z[j]};
+  const double angle = mirror * p.contact_angle;
+  const Eigen::Vector2d right = Eigen::Vector2d(mirror * p.reference_T(1), p.reference_T(2)) +
+                                s * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  return {mirror * right(0), right(1)};
+}
+
+// Per patch: its extent along the profile (the rows in contact, one data block) and its normal
+// at the reference (one segment in the second file), labelled with the contact angle.
+void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& pose,
+                  std::string* labels) {
+  std::ofstream ext(extents), nor(normals);
+  ext << "# per patch (blocks): y_mm z_mm of the elements in contact along s, track frame\n";
+  nor << "# per patch: y_mm z_mm dy_mm dz_mm (the contact normal into the rail, from "
+         "above the reference point) contact_angle_deg\n";
+  for (std::size_t n = 0; n < pose.patches.size(); ++n) {
+    const PatchResult& p = pose.patches[n];
+    const auto rows = ContactRows(p);
+    if (!rows) continue;
+    // The rows' centres, and half an element beyond the outer ones: the contact's edges.
+    const double half = 0.5 * p.grid.dy;
+    auto edge = [&](int j, int inward) {
+      const Eigen::Vector2d c = PatchPoint(p, pose.mirror, j, p.grid.y(j));
+      const int k = std::clamp(j + inward, 0, p.grid.ny - 1);
+      if (k == j) return c;
+      const Eigen::Vector2d d = PatchPoint(p, pose.mirror, k, p.grid.y(k)) - c;
+      return Eigen::Vector2d(c - half * d / d.norm());
+    };
+    std::vector<Eigen::Vector2d> points{edge(rows->first, 1)};
+    for (int j = rows->first; j <= rows->second; ++j) {
+      points.push_back(PatchPoint(p, pose.mirror, j, p.grid.y(j)));
+    }
+    points.push_back(edge(rows->second, -1));
+    for (const Eigen::Vector2d& q : points) ext << q(0) << ' ' << q(1) << '\n';
+    ext << "\n\n";
+    // In the case's frame the normal into the rail is (−sin δ, cos δ) with δ the contact angle.
+    const double angle = p.contact_angle;
+    const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));
+    const Eigen::Vector2d ref(p.reference_T(1), p.reference_T(2));
+    const Eigen::Vector2d tail = ref - kNormalLength * normal;
+    nor << tail(0) << ' ' << tail(1) << ' ' << kNormalLength * normal(0) << ' '
+        << kNormalLength * normal(1) << ' ' << angle * 180.0 / M_PI << '\n';
+    *labels += "set label " + std::to_string(n + 1) + " 'patch " + std::to_string(n + 1) + ": " +
+               Short(angle * 180.0 / M_PI, 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
+               Short(tail(0), 6) + "," + Short(tail(1), 6) + " offset char 1,0.5 front\n";
+  }
+}
+
+// The drawing's y range: where wheel and rail overlap laterally, with a margin.
+struct View {
+  double y0 = 0.0, y1 = 0.0, z0 = 0.0, z1 = 0.0;
+};
+
+View ViewOf(const fs::path& rail, const fs::path& wheel, const fs::path& normals) {
+  double ry0 = 1e300, ry1 = -1e300, wy0 = 1e300, wy1 = -1e300, z0 = 1e300, z1 = -1e300;
+  auto scan = [&](const fs::path& path, double& y0, double& y1) {
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream cells(line);
+      double y, z;
+      cells >> y >> z;
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+      z0 = std::min(z0, z);
+      z1 = std::max(z1, z);
+    }
+  };
+  scan(rail, ry0, ry1);
+  scan(wheel, wy0, wy1);
+  scan(normals, wy0, wy1);  // the normals' tails, above the contact
+  View v;
+  const double margin = 5.0;  // mm
+  v.y0 = std::min(ry0, wy0) - margin;
+  v.y1 = std::max(ry1, wy1) + margin;
+  v.z0 = z0 - margin;
+  v.z1 = z1 + margin;
+  return v;
+}
+
+std::string ProfilesScript(const View& v, const GapRange& gap, const std::string& title,
+                           const std::string& labels) {
+  // The upper panel has equal scales on y and z: its height follows from the width.
+  const double width_px = 1100.0, left = 90.0, right = 30.0, top = 50.0, gap_px = 260.0;
+  const double plot_w = width_px - left - right;
+  const double upper_h = std::clamp(plot_w * (v.z1 - v.z0) / (v.y1 - v.y0), 150.0, 1100.0);
+  const double height_px = top + upper_h + 60.0 + gap_px + 50.0;
+  auto sx = [&](double px) { return Short(px / width_px, 5); };
+  auto sy = [&](double px) { return Short(1.0 - px / height_px, 5); };
+  // The gap panel shows the interpenetration and the first 2 mm of clearance: enough to see
+  // where a second contact is near (the flange) without flattening the contact itself.
+  const double gap_top = 2.0;
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size " << width_px << ',' << static_cast<int>(height_px)
+     << " font ',10'\nset output 'profiles.png'\nset multiplot title \"" << title << "\"\n"
+     << "set lmargin at screen " << sx(left) << "\nset rmargin at screen " << sx(width_px - right)
+     << "\nset tmargin at screen " << sy(top) << "\nset bmargin at screen " << sy(top + upper_h)
+     << "\n"
+     << "set xrange [" << v.y0 << ':' << v.y1 << "]\nset yrange [" << v.z1 << ':' << v.z0
+     << "]\nset size ratio -1\n"
+     << "set grid\nset format x ''\nset ylabel 'z, mm (down)'\nset key top left box opaque\n"
+     << labels
+     << "plot 'profiles_rail.dat' with lines lw 2 lc rgb '#404040' title 'rail', "
+        "'profiles_wheel.dat' with lines lw 2 lc rgb '#2166ac' title 'wheel (principal plane)', "
+        "'profiles_patches.dat' with lines lw 6 lc rgb '#d6604d' title 'contact patch (extent "
+        "along s)', 'profiles_normals.dat' using 1:2:3:4 with vectors head filled lw 1.5 "
+        "lc rgb '#b2182b' title 'contact normal'\n"
+     << "unset label\nset size noratio\nset tmargin at screen " << sy(top + upper_h + 60.0)
+     << "\nset bmargin at screen " << sy(top + upper_h + 60.0 + gap_px) << "\n"
+     << "set format x '%g'\nset xlabel 'y, mm (track frame, lateral)'\n"
+     << "set ylabel 'gap, mm'\nset yrange [" << std::min(-0.05, 1.2 * gap.gap_min) << ':' << gap_top
+     << "]\nset key top right box opaque\n"
+     << "plot 'profiles_gap.dat' using 1:2 with lines lw 2 lc rgb '#1b7837' title 'gap between "
+        "the undeformed profiles (negative: interpenetration)', 0 with lines dt 2 lc rgb "
+        "'#000000' notitle\n"
+     << "unset multiplot\n";
+  return gp.str();
+}
+
+std::string ProfilesTitle(const Case& c, const Pose& pose) {
+  std::string title = fs::path(c.source_name).filename().string() + ": " +
+                      (c.wheelset.side == WheelSide::kLeft ? "left" : "right") + " wheel, y " +
+                      Short(c.state.y) + " mm, z " + Short(pose.kin.z) + " mm, roll " +
+                      Short(c.state.roll, 3) + " rad, yaw " + Short(c.state.yaw, 3) + " rad";
+  title += pose.solved ? ", " + std::to_string(pose.patches.size()) + " patch(es)"
+                       : " (not solved: no patches)";
+  return title;
+}
+
+}  // namespace
+
+WrittenFiles PlotProfiles(const fs::path& case_path, const fs::path& out) {
+  const Case c = LoadCase(case_path);
+  if (c.type != CaseType::kWheelRail) {
+    throw InputError(case_path.string() +
+                     ": a half-space case has no profiles; `wrc plot profiles` needs a "
+                     "wheel-rail case");
+  }
+  const auto rail_spline = Spline(c.rail, ProfileKind::kRail);
+  const auto wheel_spline = Spline(c.wheel, ProfileKind::kWheel);
+  const wr::PlacedRail rail(rail_spline, c.track);
+  const Pose pose = SolvePose(c, rail, wheel_spline);
+  const wr::PlacedWheel wheel(wheel_spline, c.wheelset, pose.kin);
+  fs::create_directories(out);
+  WrittenFiles written;
+  for (const char* name : {"profiles_rail.dat", "profiles_wheel.dat", "profiles_gap.dat",
+                           "profiles_patches.dat", "profiles_normals.dat"}) {
+    written.push_back(out / name);
+  }
+  WriteRail(written[0], rail, pose.mirror);
+  WriteWheel(written[1], wheel, pose.mirror);
+  const GapRange gap = WriteGap(written[2], rail, wheel, pose.mirror);
+  std::string labels;
+  WritePatches(written[3], written[4], pose, &labels);
+  const std::string script = ProfilesScript(ViewOf(written[0], written[1], written[4]), gap,
+                                            ProfilesTitle(c, pose), labels);
+  if (!RunGnuplot(out, "profiles.gp", script)) {
+    std::cerr << "wrc plot profiles: gnuplot failed on " << (out / "profiles.gp").string()
+              << " (is gnuplot installed?); the data is written\n";
+    return written;
+  }
+  written.push_back(out / "profiles.gp");
+  written.push_back(out / "profiles.png");
+  return written;
+}
+
+}  // namespace wrc::cli
