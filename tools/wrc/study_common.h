@@ -49,6 +49,9 @@ std::string GnuplotLiteral(const std::string& text);
 /// v with `digits` decimals; "–" for NaN.
 std::string Fixed(double v, int digits);
 
+/// A force in N written in kN with `digits` decimals.
+inline std::string Kn(double newton, int digits = 1) { return Fixed(newton / 1000.0, digits); }
+
 /// One wheel–rail solve as the studies report it: status, total forces in the track frame,
 /// L/V, the patches' resultants.
 struct SolveSummary {

@@ -398,8 +398,6 @@ void PlotFieldMaps(const fs::path& dir, const Fig14& f, double element, const st
 
 // ---- README -----------------------------------------------------------------------------
 
-std::string Kn(double n, int digits = 1) { return Fixed(n / 1000.0, digits); }
-
 // L/V of method m at height z (NaN when not solved there).
 double LvAt(const Fig13& f, std::size_t m, double z) {
   for (const ZPoint& p : f.points[m]) {
