@@ -33,7 +33,10 @@ struct PaperOptions {
   std::vector<double> z_range = {1.0, 1.25, 0.005};  // mm: from, to, step
   int halvings = 3;
   std::vector<double> omega_range = {-34.5, -31.0, 0.1};  // rad/s: from, to, step
-  double element = 0.4;                                   // mm
+  // Fig. 14 positions: the paper's y, and where the high-mileage wheel, with its flange 5.4 mm
+  // thinner than the mid-mileage wheel's (Sd 30.9 against 36.3 mm), has flange-root contact.
+  std::vector<double> fig14_y = {10.65, 16.0};
+  double element = 0.4;  // mm
   std::vector<int> figures = {13, 14};
 };
 
@@ -82,11 +85,11 @@ std::string Fig13State(double z) {
 }
 
 // §4.1.2: y = 10.65 mm, roll +1.3 mrad, Fz = 160 kN, ω varied.
-std::string Fig14State(double omega) {
+std::string Fig14State(double y, double omega) {
   std::ostringstream t;
   t.precision(12);
-  t << "y = 10.65\nfz = 160000.0\nroll = 0.0013\nyaw = 0.005\nvelocity = 15000.0\nomega = " << omega
-    << "\n";
+  t << "y = " << y
+    << "\nfz = 160000.0\nroll = 0.0013\nyaw = 0.005\nvelocity = 15000.0\nomega = " << omega << "\n";
   return t.str();
 }
 
@@ -285,23 +288,29 @@ void PlotFig13(const fs::path& dir, const Fig13& f) {
 // ---- Figs. 14–16 ------------------------------------------------------------------------
 
 struct Fig14 {
+  double y = 0.0;
+  std::string suffix;  // of the file names: "_y10.65"
   std::vector<std::string> methods = {"icp-loc", "wgt-loc-2", "curved"};
   std::vector<double> omegas;
   std::vector<std::vector<SolveSummary>> sweep;  // per method, per omega
   std::vector<SolveSummary> maps;                // per method, at kMapOmega with fields
 };
 
-Fig14 RunFig14(const PaperOptions& o, const fs::path& inputs) {
+Fig14 RunFig14(const PaperOptions& o, const fs::path& inputs, double y) {
   Fig14 f;
+  f.y = y;
+  std::ostringstream suffix;
+  suffix << "_y" << y;
+  f.suffix = suffix.str();
   f.omegas = Range(o.omega_range);
   std::vector<Case> bases;
   for (const std::string& name : f.methods) {
     bases.push_back(
-        WriteAndLoad(inputs, "fig14_" + name,
-                     HeavyHaulCase(PaperMethodNamed(name), o.element, Fig14State(kMapOmega))));
+        WriteAndLoad(inputs, "fig14" + f.suffix + "_" + name,
+                     HeavyHaulCase(PaperMethodNamed(name), o.element, Fig14State(y, kMapOmega))));
   }
-  std::cerr << kWho << ": Fig. 14, " << f.omegas.size() << " angular velocities × "
-            << f.methods.size() << " methods (fz prescribed)\n";
+  std::cerr << kWho << ": Fig. 14 at y = " << y << " mm, " << f.omegas.size()
+            << " angular velocities × " << f.methods.size() << " methods (fz prescribed)\n";
   for (const Case& base : bases) {
     std::vector<Case> cases(f.omegas.size(), base);
     for (std::size_t k = 0; k < cases.size(); ++k) cases[k].state.omega = f.omegas[k];
@@ -314,7 +323,7 @@ Fig14 RunFig14(const PaperOptions& o, const fs::path& inputs) {
 }
 
 void WriteFig14Csv(const fs::path& dir, const Fig14& f) {
-  std::ofstream csv(dir / "fig14.csv");
+  std::ofstream csv(dir / ("fig14" + f.suffix + ".csv"));
   csv.precision(10);
   csv << "method_index,method,omega,status,fx,fs,fy,fz,z,n_patches,contact_angle_deg,mu,message\n";
   for (std::size_t m = 0; m < f.methods.size(); ++m) {
@@ -327,12 +336,19 @@ void WriteFig14Csv(const fs::path& dir, const Fig14& f) {
   }
 }
 
+// Lateral track position of grid row j: the curved reference's curve point, or on a plane
+// the offset s along the plane from the reference.
+double LateralTrackY(const PatchResult& r, int j) {
+  if (static_cast<int>(r.curve_y.size()) == r.grid.ny) return r.curve_y[j];
+  return r.reference_T(1) + r.grid.y(j) * std::cos(r.contact_angle);
+}
+
 // Per element in contact: tractions (Fig. 15) and rigid slip (Fig. 16), in each patch's own
 // (x, s) frame.
 void WriteFieldsCsv(const fs::path& dir, const Fig14& f) {
-  std::ofstream csv(dir / "fig15_16_fields.csv");
+  std::ofstream csv(dir / ("fig15_16_fields" + f.suffix + ".csv"));
   csv.precision(8);
-  csv << "method_index,method,patch,x,s,pn,px,ps,wx,ws\n";
+  csv << "method_index,method,patch,x,s,pn,px,ps,wx,ws,y_track,y_plane\n";
   for (std::size_t m = 0; m < f.methods.size(); ++m) {
     const std::vector<PatchResult>& patches = f.maps[m].result.patches;
     for (std::size_t p = 0; p < patches.size(); ++p) {
@@ -344,7 +360,8 @@ void WriteFieldsCsv(const fs::path& dir, const Fig14& f) {
           const double wx = e < r.wx.size() ? r.wx[e] : NAN, ws = e < r.ws.size() ? r.ws[e] : NAN;
           csv << m << ',' << f.methods[m] << ',' << p + 1 << ',' << r.grid.x(i) << ','
               << r.grid.y(j) << ',' << r.pn[e] << ',' << r.px[e] << ',' << r.ps[e] << ',' << wx
-              << ',' << ws << '\n';
+              << ',' << ws << ',' << LateralTrackY(r, j) << ','
+              << r.reference_T(1) + r.grid.y(j) * std::cos(r.contact_angle) << '\n';
         }
       }
     }
@@ -353,47 +370,51 @@ void WriteFieldsCsv(const fs::path& dir, const Fig14& f) {
 
 void PlotFig14(const fs::path& dir, const Fig14& f) {
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1200,500 font ',10'\nset output 'fig14.png'\n"
-     << "set datafile separator ','\nset grid\nset key bottom right\n"
-     << "set multiplot layout 1,2 title 'Heavy haul, y = 10.65 mm, F_z = 160 kN: creep forces "
-        "against the angular velocity (paper Fig. 14)'\nset xlabel 'omega, rad/s'\n";
+  const std::string data = "fig14" + f.suffix + ".csv";
+  gp << "set terminal pngcairo size 1200,500 font ',10'\nset output 'fig14" << f.suffix
+     << ".png'\nset datafile separator ','\nset grid\nset key bottom right\n"
+     << "set multiplot layout 1,2 title 'Heavy haul, high-mileage wheel, y = " << f.y
+     << " mm, F_z = 160 kN: creep forces against the angular velocity (paper Fig. 14)'\n"
+     << "set xlabel 'omega, rad/s'\n";
   const char* colour[] = {"#d62728", "#2ca02c", "#1f77b4"};
   for (const auto& [label, column] : {std::pair<std::string, std::string>{"F_x, kN", "($5/1000)"},
                                       {"F_s (sum over patches), kN", "($6/1000)"}}) {
     gp << "set ylabel '" << label << "'\nplot ";
     for (std::size_t m = 0; m < f.methods.size(); ++m) {
-      gp << (m ? ", " : "") << "'fig14.csv' skip 1 using ($1==" << m << " ? $3 : 1/0):" << column
-         << " with linespoints lc rgb '" << colour[m] << "' pt 7 ps 0.4 title '" << f.methods[m]
-         << "'";
+      gp << (m ? ", " : "") << "'" << data << "' skip 1 using ($1==" << m
+         << " ? $3 : 1/0):" << column << " with linespoints lc rgb '" << colour[m]
+         << "' pt 7 ps 0.4 title '" << f.methods[m] << "'";
     }
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  RunGnuplot(dir, "fig14", gp.str(), kWho);
+  RunGnuplot(dir, "fig14" + f.suffix, gp.str(), kWho);
 }
 
-// Heat maps of two field columns per method, each element drawn as its dx × ds cell.
+// Heat maps of two field columns per method, each element drawn as its dx × ds cell at its
+// lateral track position (the patches of a planar method each have their own plane).
 void PlotFieldMaps(const fs::path& dir, const Fig14& f, double element, const std::string& name,
                    const std::string& title, const std::vector<std::string>& labels,
                    const std::vector<int>& columns) {
+  const std::string data = "fig15_16_fields" + f.suffix + ".csv";
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1100," << 260 * f.methods.size() + 60
-     << " font ',10'\nset output '" << name << ".png'\nset datafile separator ','\n"
-     << "set multiplot layout " << f.methods.size() << ",2 title '" << title << "'\n"
-     << "set xlabel 's, mm (lateral, from the reference)'\nset ylabel 'x, mm'\n"
+     << " font ',10'\nset output '" << name << f.suffix << ".png'\nset datafile separator ','\n"
+     << "set multiplot layout " << f.methods.size() << ",2 title '" << title << ", y = " << f.y
+     << " mm'\n"
+     << "set xlabel 'lateral position y, track frame, mm'\nset ylabel 'x, mm'\n"
      << "set palette defined (-1 '#2166ac', 0 '#f7f7f7', 1 '#b2182b')\nset style fill solid\n";
   for (std::size_t m = 0; m < f.methods.size(); ++m) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
       gp << "set title '" << f.methods[m] << ": " << labels[c] << "'\nset cbrange [*:*]\n"
-         << "stats 'fig15_16_fields.csv' skip 1 using ($1==" << m << " ? abs($" << columns[c]
+         << "stats '" << data << "' skip 1 using ($1==" << m << " ? abs($" << columns[c]
          << ") : 1/0) nooutput\nif (STATS_records > 0) { set cbrange [-STATS_max:STATS_max] }\n"
-         << "plot 'fig15_16_fields.csv' skip 1 using ($1==" << m << " ? $5 : 1/0):4:("
-         << element / 2 << "):(" << element / 2 << "):" << columns[c]
-         << " with boxxyerror lc palette notitle\n";
+         << "plot '" << data << "' skip 1 using ($1==" << m << " ? $11 : 1/0):4:(" << element / 2
+         << "):(" << element / 2 << "):" << columns[c] << " with boxxyerror lc palette notitle\n";
     }
   }
   gp << "unset multiplot\n";
-  RunGnuplot(dir, name, gp.str(), kWho);
+  RunGnuplot(dir, name + f.suffix, gp.str(), kWho);
 }
 
 // ---- README -----------------------------------------------------------------------------
@@ -441,23 +462,30 @@ void WriteFig13Summary(std::ostream& md, const Fig13& f) {
         "with z); a jump keeps both at its height.\n\n";
 }
 
-void WriteFig14Summary(std::ostream& md, const Fig14& f) {
+void WriteFig14Intro(std::ostream& md) {
   md << "## Figs. 14–16: rigid slip and creep forces (§4.1.2)\n\n"
-     << "y = 10.65 mm, roll +1.3 mrad, yaw 5 mrad, v = 15 m/s, Fz = 160 kN prescribed, ω "
-        "varied. The paper uses the **mid-mileage** wheel of the heavy-haul set, which is not "
-        "available; wrc runs the **high-mileage** wheel (the one of Fig. 13), so its curves "
-        "have the paper's shape questions, not its numbers. "
-     << "[fig14.png](fig14.png) (Fx, Fs against ω), [fig15_tractions.png](fig15_tractions.png), "
-        "[fig16_rigid_slip.png](fig16_rigid_slip.png) at ω = "
-     << kMapOmega
-     << " rad/s; data [fig14.csv](fig14.csv), "
-        "[fig15_16_fields.csv](fig15_16_fields.csv).\n\n"
-     << "At ω = " << kMapOmega << " rad/s:\n\n"
-     << "| method | paper: reference angle δ, μ | wrc: δ of the main patch | μ there | "
+     << "Roll +1.3 mrad, yaw 5 mrad, v = 15 m/s, Fz = 160 kN prescribed (z solved), ω varied. "
+        "The paper uses the **mid-mileage** wheel of the heavy-haul set, which is not among "
+        "the profiles wrc has (CONTACT's test bank holds the high rail and the high-mileage "
+        "wheel only); wrc runs the **high-mileage** wheel of Fig. 13, at the paper's y = 10.65 "
+        "mm and at y = 16 mm, where this wheel, its flange 5.4 mm thinner (Sd 30.9 against "
+        "36.3 mm), has the flange-root contact the paper's wheel has at 10.65 mm. So the "
+        "numbers are not the paper's; the comparison is of what the methods do.\n\n";
+}
+
+void WriteFig14Summary(std::ostream& md, const Fig14& f) {
+  md << "### y = " << f.y << " mm\n\n"
+     << "[fig14" << f.suffix << ".png](fig14" << f.suffix << ".png) (Fx, Fs against ω), "
+     << "[fig15_tractions" << f.suffix << ".png](fig15_tractions" << f.suffix << ".png), "
+     << "[fig16_rigid_slip" << f.suffix << ".png](fig16_rigid_slip" << f.suffix
+     << ".png) at ω = " << kMapOmega << " rad/s; data [fig14" << f.suffix << ".csv](fig14"
+     << f.suffix << ".csv), [fig15_16_fields" << f.suffix << ".csv](fig15_16_fields" << f.suffix
+     << ".csv). At ω = " << kMapOmega << " rad/s:\n\n"
+     << "| method | paper (mid-mileage wheel): δ, μ | wrc: δ of the main patch | μ there | "
         "patches | Fx, kN | Fs, kN | Fy, kN |\n|---|---|---|---|---|---|---|---|\n";
   const std::string paper[] = {Fixed(kPaperIcpAngleDeg, 1) + "°, 0.20 (flange)",
                                Fixed(kPaperWgtAngleDeg, 1) + "°, 0.35 (tread)",
-                               "varies: 0.20 left … 0.35 right"};
+                               "varies: 0.20 … 0.35 across the patch"};
   for (std::size_t m = 0; m < f.methods.size(); ++m) {
     const SolveSummary& s = f.maps[m];
     md << "| " << f.methods[m] << " | " << paper[m] << " | "
@@ -467,7 +495,8 @@ void WriteFig14Summary(std::ostream& md, const Fig14& f) {
   md << "\n";
 }
 
-void WriteReadme(const fs::path& dir, const PaperOptions& o, const Fig13* f13, const Fig14* f14) {
+void WriteReadme(const fs::path& dir, const PaperOptions& o, const Fig13* f13,
+                 const std::vector<Fig14>& f14) {
   std::ofstream md(dir / "README.md");
   md << "# The paper's §4.1 results, reproduced by wrc\n\n"
      << "Generated by `wrc study paper --out " << o.out << " --element " << o.element
@@ -481,7 +510,20 @@ void WriteReadme(const fs::path& dir, const PaperOptions& o, const Fig13* f13, c
      << " mm. The case files solved are in `inputs/` (`wrc solve inputs/fig13_curved.toml` "
         "re-solves one point).\n\n";
   if (f13) WriteFig13Summary(md, *f13);
-  if (f14) WriteFig14Summary(md, *f14);
+  if (!f14.empty()) WriteFig14Intro(md);
+  for (const Fig14& f : f14) WriteFig14Summary(md, f);
+}
+
+void ReproduceFig14(const PaperOptions& o, const fs::path& dir, const Fig14& f) {
+  WriteFig14Csv(dir, f);
+  WriteFieldsCsv(dir, f);
+  PlotFig14(dir, f);
+  PlotFieldMaps(dir, f, o.element, "fig15_tractions",
+                "Tangential tractions at omega = -33.7 rad/s (paper Fig. 15)",
+                {"p_x, N/mm^2", "p_s, N/mm^2"}, {7, 8});
+  PlotFieldMaps(dir, f, o.element, "fig16_rigid_slip",
+                "Relative rigid slip at omega = -33.7 rad/s (paper Fig. 16)", {"w_x, -", "w_s, -"},
+                {9, 10});
 }
 
 int RunPaperStudy(const PaperOptions& o) {
@@ -493,25 +535,19 @@ int RunPaperStudy(const PaperOptions& o) {
     return std::find(o.figures.begin(), o.figures.end(), fig) != o.figures.end();
   };
   std::unique_ptr<Fig13> f13;
-  std::unique_ptr<Fig14> f14;
+  std::vector<Fig14> f14;
   if (wants(13)) {
     f13 = std::make_unique<Fig13>(RunFig13(o, inputs));
     WriteFig13Csv(dir, *f13);
     PlotFig13(dir, *f13);
   }
   if (wants(14)) {
-    f14 = std::make_unique<Fig14>(RunFig14(o, inputs));
-    WriteFig14Csv(dir, *f14);
-    WriteFieldsCsv(dir, *f14);
-    PlotFig14(dir, *f14);
-    PlotFieldMaps(dir, *f14, o.element, "fig15_tractions",
-                  "Tangential tractions at omega = -33.7 rad/s (paper Fig. 15)",
-                  {"p_x, N/mm^2", "p_s, N/mm^2"}, {7, 8});
-    PlotFieldMaps(dir, *f14, o.element, "fig16_rigid_slip",
-                  "Relative rigid slip at omega = -33.7 rad/s (paper Fig. 16)",
-                  {"w_x, -", "w_s, -"}, {9, 10});
+    for (double y : o.fig14_y) {
+      f14.push_back(RunFig14(o, inputs, y));
+      ReproduceFig14(o, dir, f14.back());
+    }
   }
-  WriteReadme(dir, o, f13.get(), f14.get());
+  WriteReadme(dir, o, f13.get(), f14);
   std::cerr << kWho << ": report in " << (dir / "README.md").string() << '\n';
   return kExitOk;
 }
@@ -547,6 +583,9 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
                    "Fig. 14: angular velocities FROM,TO,STEP, rad/s")
       ->delimiter(',')
       ->expected(3)
+      ->capture_default_str();
+  paper->add_option("--fig14-y", o->fig14_y, "Fig. 14: lateral positions, mm")
+      ->delimiter(',')
       ->capture_default_str();
   paper->add_option("--element", o->element, "Element size dx = ds, mm")
       ->check(CLI::Range(0.05, 5.0))
