@@ -646,9 +646,13 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
       // Second point from the Hertz scaling of the first.
       z1 = f0 > 0.0 ? first_contact + (z0 - first_contact) * g_target / g_of(f0)
                     : first_contact + 2.0 * (z0 - first_contact);
+      // Without a height above fz yet, the next guess goes deeper by doubling the approach
+      // below first contact: bisecting towards the open end (1e300) would ask for absurd
+      // heights whose failure then ends the iteration.
+      const auto deeper = [&] { return lo + 2.0 * (lo - first_contact) + 1e-3; };
       for (int it = 0; it < options.max_fz_iterations; ++it) {
         if (hi < 1e300 && !(z1 > lo && z1 < hi)) z1 = 0.5 * (lo + hi);
-        if (hi == 1e300 && !(z1 > lo)) z1 = lo + 2.0 * (lo - first_contact) + 1e-3;
+        if (hi == 1e300 && !(z1 > lo && std::isfinite(z1))) z1 = deeper();
         f1 = normal_force(z1);
         record(z1, f1);
         if (hi < 1e300 && hi - lo < 1e-13) break;
@@ -661,8 +665,11 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
         if (secant_pair) stiffness = (f1 - f0) / (z1 - z0);
         if (std::fabs(f1 - fz) <= phase_tolerance) break;
         const double ga = g_of(f0), gb = g_of(f1);
+        // Two heights without contact (a first-contact estimate above the true one) give
+        // no secant: then bisection, or deeper while no height above fz is known.
         double z2 = secant_pair && gb != ga ? z1 + (g_target - gb) * (z1 - z0) / (gb - ga)
-                                            : 0.5 * (lo + hi);
+                    : hi < 1e300            ? 0.5 * (lo + hi)
+                                            : deeper();
         if (hi < 1e300 && std::isfinite(g_hi) && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
           z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);
         }

@@ -571,6 +571,8 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   AddCostStudies(*study, exit_code);
   AddStabilityStudy(*study, exit_code);
   AddDynamicsStudy(*study, exit_code);
+  AddPaperStudy(*study, exit_code);
+  AddPlanarStudy(*study, exit_code);
 }
 
 }  // namespace wrc::cli
