@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "tools/wrc/gnuplot.h"
 #include "tools/wrc/shipped_files.h"
 #include "wrc/errors.h"
 
@@ -81,9 +82,7 @@ void RunParallel(std::size_t n, int threads, const std::function<void(std::size_
 
 void RunGnuplot(const fs::path& dir, const std::string& name, const std::string& script,
                 const std::string& who) {
-  std::ofstream(dir / (name + ".gp")) << script;
-  const std::string cmd = "cd '" + dir.string() + "' && gnuplot '" + name + ".gp' 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
+  if (!RunGnuplot(dir, name + ".gp", script)) {
     std::cerr << who << ": gnuplot failed for " << name << " (is gnuplot-nox installed?)\n";
   }
 }
