@@ -16,19 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/tool_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
-const fs::path kSource = WRC_SOURCE_DIR;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using wrc::tool_test::kSource;
+using wrc::tool_test::ReadFile;
 
 // Rows of numbers: a CSV after its header, or a .dat without its '#' lines and blank lines.
 std::vector<std::vector<double>> Numbers(const fs::path& path) {
@@ -90,12 +85,7 @@ class Plot : public ::testing::Test {
     return text.substr(0, text.find("[table]")) + axes;
   }
 
-  int Run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && timeout 200 '" + kWrc.string() +
-                                "' " + args + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  int Run(const std::string& args) const { return wrc::tool_test::RunWrcIn(dir_, args, 200); }
   std::string Err() const { return ReadFile(dir_ / "stderr.txt"); }
   std::string Out() const { return ReadFile(dir_ / "stdout.txt"); }
 

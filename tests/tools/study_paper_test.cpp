@@ -15,19 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/tool_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
-const fs::path kSource = WRC_SOURCE_DIR;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using wrc::tool_test::kSource;
+using wrc::tool_test::ReadFile;
 
 // The CSV's rows as maps from the header's names (no quoted commas in the columns read).
 std::vector<std::map<std::string, std::string>> Csv(const fs::path& path) {
@@ -65,12 +60,7 @@ class PaperStudy : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  int Run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && timeout 300 '" + kWrc.string() +
-                                "' " + args + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  int Run(const std::string& args) const { return wrc::tool_test::RunWrcIn(dir_, args, 300); }
   std::string Err() const { return ReadFile(dir_ / "stderr.txt"); }
 
   fs::path dir_;

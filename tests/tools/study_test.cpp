@@ -14,19 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/tool_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
-const fs::path kSource = WRC_SOURCE_DIR;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using wrc::tool_test::kSource;
+using wrc::tool_test::ReadFile;
 
 // The CSV's rows after the header, split at commas (no quoted commas in the columns read).
 std::vector<std::vector<std::string>> CsvRows(const fs::path& path) {
@@ -72,12 +67,7 @@ class Study : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs `wrc ARGS` in the user's directory; stdout and stderr go to files there.
-  int Run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && timeout 120 '" + kWrc.string() +
-                                "' " + args + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  int Run(const std::string& args) const { return wrc::tool_test::RunWrcIn(dir_, args, 120); }
   std::string Err() const { return ReadFile(dir_ / "stderr.txt"); }
   std::string Out() const { return ReadFile(dir_ / "stdout.txt"); }
 
