@@ -134,6 +134,39 @@ TEST_F(Study, TablesRunsOnTheUsersScene) {
   }
 }
 
+// From the user's directory, with no --model: the shipped wheelset compiled in. At the central
+// position y = 0 is a node and the table's slopes along y are secants over its 1 mm node steps
+// where the solver's are over ±0.25 mm; the yaw moment of the rolling-radius difference and the
+// lateral force are close to linear within ±1 mm on this pair (2 % apart, measured), so 10 %
+// tells a wrong wheelset, wheel or sign from the secant's error.
+TEST_F(Study, DynamicsRunsWithTheShippedWheelsetFromAnyDirectory) {
+  std::string scene = ReadFile(dir_ / "mbench.toml");
+  for (const char* key : {"y = 4.0  # mm\n", "yaw = 0.002  # rad\n", "fz = 10000.0  # N\n"}) {
+    scene.replace(scene.find(key), std::string(key).size(), "");
+  }
+  scene +=
+      "[table]\naxes = [\"y_wheel\", \"fz\", \"roll\", \"yaw\", \"spin\"]\n"
+      "y_wheel = [-1.0, 0.0, 1.0]\nfz = [12500.0]\nroll = [-0.001, 0.0, 0.001]\n"
+      "yaw = [-0.002, 0.0, 0.002]\nspin = [-0.002, 0.0, 0.002]\n"
+      "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"z\"]\n";
+  std::ofstream(dir_ / "scene.toml") << scene;
+  ASSERT_EQ(Run("generate scene.toml -o t.h5 --threads 2"), 0) << Err();
+  ASSERT_EQ(Run("study dynamics t.h5 --linear-only --out out"), 0) << Err();
+  const auto rows = CsvRows(dir_ / "out" / "linear.csv");
+  ASSERT_EQ(rows.size(), 4u);  // table and solver at y = 0 and at the disturbance
+  ASSERT_EQ(rows[0][0], "table");
+  ASSERT_EQ(rows[1][0], "solver");
+  ASSERT_EQ(rows[0][1], "0");
+  for (const int column : {3, 7}) {  // dfy_dy, dmz_dy
+    const double table = std::stod(rows[0][column]), solver = std::stod(rows[1][column]);
+    EXPECT_NEAR(table / solver, 1.0, 0.1) << column;
+  }
+  const std::string md = ReadFile(dir_ / "out" / "README.md");
+  EXPECT_NE(md.find("wheel load 12500 N"), std::string::npos) << md;  // the shipped wheelset
+  EXPECT_EQ(md.find("--model"), std::string::npos) << md;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "speeds.csv"));  // no runs asked for
+}
+
 TEST_F(Study, HelpShowsTheDefaults) {
   ASSERT_EQ(Run("study tables --help"), 0) << Err();
   EXPECT_NE(Out().find("300"), std::string::npos) << Out();           // --samples
