@@ -190,8 +190,8 @@ TEST_F(PaperStudy, PlanarStatisticsAreThoseOfTheCases) {
   for (const auto& row : Csv(dir_ / "out" / "planar_stats.csv")) {
     if (row.at("quantity") != "lv" && row.at("quantity") != "fx") continue;
     const std::string& subset = row.at("subset");
-    const auto& d = row.at("quantity") == "lv" ? dlv[subset][row.at("method")]
-                                                : dfx[subset][row.at("method")];
+    const auto& d =
+        row.at("quantity") == "lv" ? dlv[subset][row.at("method")] : dfx[subset][row.at("method")];
     ASSERT_EQ(d.size(), subset == "all" ? 2u : below) << subset;
     ASSERT_EQ(std::stoul(row.at("cases")), d.size()) << subset;
     const double n = static_cast<double>(d.size());

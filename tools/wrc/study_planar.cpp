@@ -274,8 +274,8 @@ double Difference(const std::string& q, const SolveSummary& m, const SolveSummar
 
 // stats[method][quantity] over the cases that both the method and the curved reference solved
 // and where the curved reference's |L/V| is at most `lv_limit`.
-std::vector<std::vector<Stats>> AllStatistics(const std::vector<AuditCase>& cases,
-                                              const Results& r, double lv_limit) {
+std::vector<std::vector<Stats>> AllStatistics(const std::vector<AuditCase>& cases, const Results& r,
+                                              double lv_limit) {
   std::vector<std::vector<Stats>> stats;
   for (std::size_t m = 0; m < PaperMethods().size(); ++m) {
     std::vector<Stats> per_quantity;
@@ -344,9 +344,9 @@ void WriteStatsCsv(const fs::path& dir, const StatsSet& set) {
     for (std::size_t m = 1; m < stats->size(); ++m) {
       for (std::size_t q = 0; q < Quantities().size(); ++q) {
         const Stats& s = (*stats)[m][q];
-        csv << subset << ',' << m << ',' << PaperMethods()[m].name << ',' << Quantities()[q]
-            << ',' << (q == 0 ? "-" : "% of load") << ',' << s.n << ',' << s.mean << ','
-            << s.mean_abs << ',' << s.rms << ',' << s.max_abs << '\n';
+        csv << subset << ',' << m << ',' << PaperMethods()[m].name << ',' << Quantities()[q] << ','
+            << (q == 0 ? "-" : "% of load") << ',' << s.n << ',' << s.mean << ',' << s.mean_abs
+            << ',' << s.rms << ',' << s.max_abs << '\n';
       }
     }
   }
@@ -466,8 +466,8 @@ void WriteLvTable(std::ostream& md, const std::vector<std::vector<Stats>>& stats
 
 void WriteReadme(const fs::path& dir, const std::string& source,
                  const std::vector<AuditCase>& cases, const Results& r, const StatsSet& set,
-                 std::size_t worst,
-                 const std::vector<SolveSummary>& worst_solves, double seconds, int threads) {
+                 std::size_t worst, const std::vector<SolveSummary>& worst_solves, double seconds,
+                 int threads) {
   std::size_t failed = 0;
   for (const auto& row : r) {
     for (const SolveSummary& s : row) failed += Solved(s) ? 0 : 1;

@@ -85,8 +85,8 @@ TEST(InitialContactPoint, WithTheWeightedAngleMatchesContact) {
   for (const char* name : {"mbench_planar_y0", "mbench_planar_y2", "mbench_planar_y4",
                            "mbench_planar_y6", "mbench_planar_y8", "mbench_planar_y10"}) {
     const json ref = Reference(name);
-    const WheelRailResult r = SolveWheelRail(
-        PlanarCase(name, ReferencePosition::kInitial, ReferenceAngle::kWeighted));
+    const WheelRailResult r =
+        SolveWheelRail(PlanarCase(name, ReferencePosition::kInitial, ReferenceAngle::kWeighted));
     const json& f = ref["rail_forces_track"];
     const double load = std::fabs(f["fz"].get<double>());
     ASSERT_EQ(r.patches.size(), ref["patches"].size()) << name;
@@ -113,8 +113,7 @@ TEST(InitialContactPoint, SampledAngleIsTheRailsInclinationThere) {
   ASSERT_EQ(r.patches.size(), 1u);
   const PatchResult& p = r.patches[0];
   const double cant = 0.025;  // rad, of the case
-  EXPECT_NEAR(p.contact_angle, RailInclinationAt(RailPoints(), p.reference_rail(0)) - cant,
-              3e-4);
+  EXPECT_NEAR(p.contact_angle, RailInclinationAt(RailPoints(), p.reference_rail(0)) - cant, 3e-4);
   const double fz = ref["rail_forces_track"]["fz"].get<double>();
   const double fy = ref["rail_forces_track"]["fy"].get<double>();
   const double d_angle = p.contact_angle - ref["patches"][0]["contact_angle"].get<double>();
