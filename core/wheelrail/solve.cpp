@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/wheelrail/contact_search.h"
+#include "core/wheelrail/fz_iteration.h"
 #include "core/wheelrail/geometry.h"
 #include "core/wheelrail/patch.h"
 #include "wrc/errors.h"
@@ -493,6 +494,69 @@ void MirrorResult(WheelRailResult& r) {
   }
 }
 
+// The contact's vertical force at wheelset heights, for the fz iteration; keeps the last result
+// of each kind of solve.
+class ContactVerticalForce : public wr::VerticalForce {
+ public:
+  ContactVerticalForce(Problem& pb, double first_contact, WheelRailTimings* timings)
+      : pb_(pb), first_contact_(first_contact), timings_(timings) {}
+  double Normal(double z, double tolerance) override {
+    CoverHeight(pb_, z, first_contact_);
+    normal = SolveAt(pb_, z, false, timings_, tolerance);
+    return normal.force_T(2);
+  }
+  double Full(double z, double tangential_tolerance) override {
+    CoverHeight(pb_, z, first_contact_);
+    full = SolveAt(pb_, z, true, timings_, 0.0, tangential_tolerance);
+    return full.force_T(2);
+  }
+  WheelRailResult normal, full;
+
+ private:
+  Problem& pb_;
+  const double first_contact_;
+  WheelRailTimings* timings_;
+};
+
+// Prescribed vertical force FZ(TR) on the rail: the height is found on normal-only solves (the
+// tangential tractions add only a small part, fs·sin δ, to FZ(TR)), then full solves correct
+// for that part (core/wheelrail/fz_iteration.h). It starts from the caller's guess or the Hertz
+// estimate.
+WheelRailResult SolveForPrescribedFz(Problem& pb, double first_contact, WheelRailTimings* timings,
+                                     int* iterations) {
+  const Case& c = *pb.c;
+  const WheelRailOptions& options = *pb.options;
+  const double fz = *c.state.fz;
+  double z0 = std::isfinite(options.z_guess) && options.z_guess > first_contact
+                  ? options.z_guess
+                  : HertzGuess(pb, fz, first_contact);
+  if (!(z0 > first_contact)) z0 = first_contact + 0.01;
+  wr::FzIterationOptions iteration;
+  iteration.fz_tolerance = options.fz_tolerance;
+  iteration.normal_tolerance = options.normal.tolerance;
+  iteration.tangential_tolerance = options.tangential.tolerance;
+  iteration.max_normal_steps = options.max_fz_iterations;
+  iteration.tangential = c.effects.tangential;
+  ContactVerticalForce force(pb, first_contact, timings);
+  const wr::FzIterationSummary s = wr::SolveForFz(force, fz, first_contact, z0, iteration);
+  *iterations = s.solves;
+  const std::string not_reached =
+      c.source_name + ": state.fz = " + FormatNumber(fz) + " N is not reached";
+  if (s.outcome == wr::FzOutcome::kNoSupport) {
+    throw InputError(not_reached + ": the wheel finds no support on the rail");
+  }
+  if (s.outcome == wr::FzOutcome::kUnsolvable) {
+    throw InputError(not_reached + " before the contact can no longer be solved (" + s.unsolvable +
+                     ")");
+  }
+  WheelRailResult result = std::move(s.last_was_full ? force.full : force.normal);
+  if (s.outcome != wr::FzOutcome::kMet) {
+    result.status = SolverStatus::kNotConverged;
+    result.message = "vertical force iteration did not meet state.fz = " + FormatNumber(fz);
+  }
+  return result;
+}
+
 }  // namespace
 
 WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
@@ -559,203 +623,7 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   if (st.z) {
     result = SolveAt(pb, *st.z, true, &timings);
   } else {
-    // Prescribed vertical force FZ(TR) on the rail. First z is found on normal-only solves (the
-    // tangential tractions add only a small part, fs·sin δ, to FZ(TR)); then full solves
-    // correct for that part with Newton steps on the stiffness dF/dz known from the normal
-    // iteration, until a full solve meets fz.
-    const double fz = *st.fz;
-    const double tolerance = options.fz_tolerance * fz;
-    // The normal-only phase ends within kNormalPhase·fz when a full solve follows: the first
-    // full solve moves the force by the tangential part (1e-4 to 1e-3 of fz in the Manchester
-    // cases), so a Newton step on the full force is needed anyway and a closer start saves no
-    // full solve. Without friction the normal phase gives the result itself.
-    constexpr double kNormalPhase = 1e-5;
-    const double phase_tolerance =
-        c.effects.tangential ? std::max(0.25 * tolerance, kNormalPhase * fz) : 0.25 * tolerance;
-    // Normal solves far from fz need not be exact: their tolerance is 1 % of the force error
-    // expected of this step, between the solver's own tolerance and 1e-5. The secant converges
-    // faster than linearly, so that is the last error times the last contraction, not the last
-    // error itself: a solve whose force is off by more than the step still to go misleads the
-    // secant and the bracket (seen: a loose 1e-5 solve 1.6e-6 of fz off, after which the
-    // bracket closed on the wrong side of fz and the iteration stalled 1.1e-6 away).
-    double last_error = 1.0, previous_error = 1.0;
-    WheelRailResult last_normal;
-    double last_normal_z = std::numeric_limits<double>::quiet_NaN();
-    // A height that cannot be solved (the contact leaves the profiles, a patch too large to
-    // solve) lies below every height that carries fz, as the force grows with z: it bounds
-    // the bracket from above like a force of +inf, and its reason is kept for the message
-    // should fz lie beyond it.
-    std::string unsolvable;
-    bool hi_unsolvable = false;
-    auto normal_force = [&](double z) {
-      ++iterations;
-      CoverHeight(pb, z, first_contact);
-      try {
-        const double expected_error = last_error * std::min(1.0, last_error / previous_error);
-        const double normal_tolerance =
-            std::clamp(1e-2 * expected_error, options.normal.tolerance, 1e-5);
-        last_normal = SolveAt(pb, z, false, &timings, normal_tolerance);
-      } catch (const InputError& e) {
-        unsolvable = e.what();
-        return std::numeric_limits<double>::infinity();
-      }
-      last_normal_z = z;
-      const double f = last_normal.force_T(2);
-      previous_error = last_error;
-      last_error = std::fabs(f - fz) / fz;
-      return f;
-    };
-    // Secant on G(z) = F(z)^(2/3): for Hertzian contact F ∝ δ^1.5 with δ = z − z_c, so G is
-    // close to linear in z and the secant converges in a few steps. A bracket [lo, hi] with
-    // F(lo) < fz < F(hi) guards every step (regula falsi or bisection when the secant leaves
-    // it), so the iteration cannot diverge where patches appear or merge.
-    auto g_of = [](double f) { return std::cbrt(std::max(f, 0.0) * std::max(f, 0.0)); };
-    const double g_target = g_of(fz);
-    double lo = first_contact, g_lo = 0.0, hi = 1e300, g_hi = 0.0;
-    double z0 = std::isfinite(options.z_guess) && options.z_guess > first_contact
-                    ? options.z_guess
-                    : HertzGuess(pb, fz, first_contact);
-    if (!(z0 > first_contact)) z0 = first_contact + 0.01;
-    double f0 = normal_force(z0);
-    double z1 = z0, f1 = f0;
-    auto record = [&](double z, double f) {
-      if (f < fz) {
-        if (z > lo) {
-          lo = z;
-          g_lo = g_of(f);
-        }
-      } else if (z < hi) {
-        hi = z;
-        g_hi = g_of(f);
-        hi_unsolvable = !std::isfinite(f);
-      }
-    };
-    record(z0, f0);
-    double stiffness = 0.0;  // dF/dz near the solution
-    // With friction the normal-only phase hands over early: once a normal solve is within
-    // kHandOver·fz, the secant's next z is within ~1e-6·fz of the normal-only target (the
-    // secant on F^(2/3) converges about quadratically from there), and the full solves that
-    // follow correct the tangential part, 1e-4 to a few 1e-2 of fz, by Newton steps anyway. So
-    // the first full solve goes to that z directly, without a last normal-only solve there
-    // (measured: one solve fewer on y0, y8 and y10, the same passes elsewhere).
-    constexpr double kHandOver = 1e-3;
-    const double hand_over = c.effects.tangential ? kHandOver : 0.0;
-    double z_hand_over = std::numeric_limits<double>::quiet_NaN();
-    double f_hand_over = 0.0;  // the normal force expected there
-    if (std::fabs(f0 - fz) > phase_tolerance) {
-      // Second point from the Hertz scaling of the first.
-      z1 = f0 > 0.0 ? first_contact + (z0 - first_contact) * g_target / g_of(f0)
-                    : first_contact + 2.0 * (z0 - first_contact);
-      // Without a height above fz yet, the next guess goes deeper by doubling the approach
-      // below first contact: bisecting towards the open end (1e300) would ask for absurd
-      // heights whose failure then ends the iteration.
-      const auto deeper = [&] { return lo + 2.0 * (lo - first_contact) + 1e-3; };
-      for (int it = 0; it < options.max_fz_iterations; ++it) {
-        if (hi < 1e300 && !(z1 > lo && z1 < hi)) z1 = 0.5 * (lo + hi);
-        if (hi == 1e300 && !(z1 > lo && std::isfinite(z1))) z1 = deeper();
-        f1 = normal_force(z1);
-        record(z1, f1);
-        if (hi < 1e300 && hi - lo < 1e-13) break;
-        if (!std::isfinite(f1)) {
-          // Unsolvable: bisection towards the solved heights; the secant pair stays.
-          z1 = 0.5 * (lo + hi);
-          continue;
-        }
-        const bool secant_pair = z1 != z0 && std::isfinite(f0);
-        if (secant_pair) stiffness = (f1 - f0) / (z1 - z0);
-        if (std::fabs(f1 - fz) <= phase_tolerance) break;
-        const double ga = g_of(f0), gb = g_of(f1);
-        // Two heights without contact (a first-contact estimate above the true one) give
-        // no secant: then bisection, or deeper while no height above fz is known.
-        double z2 = secant_pair && gb != ga ? z1 + (g_target - gb) * (z1 - z0) / (gb - ga)
-                    : hi < 1e300            ? 0.5 * (lo + hi)
-                                            : deeper();
-        if (hi < 1e300 && std::isfinite(g_hi) && g_hi > g_lo && (z2 <= lo || z2 >= hi)) {
-          z2 = lo + (g_target - g_lo) * (hi - lo) / (g_hi - g_lo);
-        }
-        if (std::fabs(f1 - fz) <= hand_over * fz && z2 > lo && (hi == 1e300 || z2 < hi) &&
-            secant_pair) {
-          z_hand_over = z2;
-          f_hand_over = f1 + (f1 - f0) / (z1 - z0) * (z2 - z1);
-          break;
-        }
-        z0 = z1;
-        f0 = f1;
-        z1 = z2;
-      }
-      const bool short_of_fz = std::isnan(z_hand_over) && !(std::fabs(f1 - fz) <= phase_tolerance);
-      if (short_of_fz && hi == 1e300) {
-        throw InputError(c.source_name + ": state.fz = " + FormatNumber(fz) +
-                         " N is not reached: the wheel finds no support on the rail");
-      }
-      if (short_of_fz && hi_unsolvable) {
-        throw InputError(c.source_name + ": state.fz = " + FormatNumber(fz) +
-                         " N is not reached before the contact can no longer be solved (" +
-                         unsolvable + ")");
-      }
-    }
-    if (!(stiffness > 0.0)) {
-      // Met at the first evaluation: estimate dF/dz from the Hertz law, F ∝ δ^1.5.
-      stiffness = 1.5 * std::max(f1, 1e-9) / std::max(z1 - first_contact, 1e-9);
-    }
-    double z = std::isnan(z_hand_over) ? z1 : z_hand_over;
-    const double f_normal_at_z = std::isnan(z_hand_over) ? f1 : f_hand_over;
-    bool met = false;
-    if (!c.effects.tangential) {
-      // The last normal solve, unless it was a loose one (then solved again at the tolerance).
-      CoverHeight(pb, z, first_contact);
-      result = z == last_normal_z && last_error <= 0.25 * options.fz_tolerance
-                   ? std::move(last_normal)
-                   : SolveAt(pb, z, false, &timings);
-      met = std::fabs(result.force_T(2) - fz) <= tolerance;
-    } else {
-      // Newton steps on the full force: the first with the normal-only stiffness, then with the
-      // secant stiffness of the full solves (at flange contact fs·sin δ changes with z as much
-      // as the normal part, and the normal stiffness alone converges only linearly there).
-      //
-      // The first full solve only serves to measure the tangential part for the next Newton
-      // step, so its tangential problem is solved to kFirstPassTangential instead of the
-      // solver's tolerance: the part is 1e-4 to 1e-3 of fz, so an error of 1e-4 of the
-      // tractions moves that step by 1e-7 of fz or less, below fz_tolerance. The next solve
-      // starts from these tractions and is solved fully; only a full-tolerance solve can end
-      // the iteration.
-      constexpr double kFirstPassTangential = 1e-4;
-      const bool loose_first = options.tangential.tolerance < kFirstPassTangential;
-      double z_last = 0.0, f_last = 0.0;
-      for (int pass = 0; pass < 20 && !met; ++pass) {
-        ++iterations;
-        const bool loose = pass == 0 && loose_first;
-        CoverHeight(pb, z, first_contact);
-        try {
-          result = SolveAt(pb, z, true, &timings, 0.0, loose ? kFirstPassTangential : 0.0);
-        } catch (const InputError&) {
-          // A Newton step to a height that cannot be solved (see normal_force): half of it.
-          if (pass == 0) throw;
-          z = 0.5 * (z + z_last);
-          continue;
-        }
-        const double f = result.force_T(2);
-        met = !loose && std::fabs(f - fz) <= tolerance;
-        if (pass > 0 && z != z_last) {
-          const double secant = (f - f_last) / (z - z_last);
-          if (secant > 0.0) stiffness = secant;
-        } else if (pass == 0 && f_normal_at_z > 0.0 && f > 0.0) {
-          // The tangential part of FZ(TR), fs·sin δ, follows the normal load (in full slip
-          // fs = μ·fn exactly), so dF/dz scales like F itself: the normal stiffness times
-          // F_full/F_normal at this z. At flange contact, where that part is a few % of FZ,
-          // this saves the pass that the secant needed to learn it; on the tread it changes
-          // the stiffness by 1e-4 or less.
-          stiffness *= f / f_normal_at_z;
-        }
-        z_last = z;
-        f_last = f;
-        z -= (f - fz) / stiffness;
-      }
-    }
-    if (!met) {
-      result.status = SolverStatus::kNotConverged;
-      result.message = "vertical force iteration did not meet state.fz = " + FormatNumber(fz);
-    }
+    result = SolveForPrescribedFz(pb, first_contact, &timings, &iterations);
   }
   result.rail_origin_T = {0.0, pb.rail->origin()(0), pb.rail->origin()(1)};
   AddProfileWarnings(pb, result);
