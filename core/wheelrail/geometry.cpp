@@ -123,7 +123,10 @@ Eigen::Vector2d PlacedRail::ToRail(const Eigen::Vector2d& p_T) const {
 
 std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0, const Eigen::Vector2d& n,
                                                 double s_guess) const {
-  // f(s) = (P(s) − p0) × n = 0, Newton with f'(s) = t(s) × n.
+  // f(s) = (P(s) − p0) × n = 0, Newton with f'(s) = t(s) × n. A start or a step that is not a
+  // number (a guess off the profile's y range) ends it without an intersection, as one that
+  // leaves the profile does.
+  if (!std::isfinite(s_guess)) return std::nullopt;
   double s = std::clamp(s_guess, 0.0, spline_->length());
   for (int it = 0; it < 50; ++it) {
     const Eigen::Vector2d d = PositionAt(s) - p0;
@@ -133,7 +136,7 @@ std::optional<double> PlacedRail::IntersectLine(const Eigen::Vector2d& p0, const
     if (std::fabs(df) < 1e-12) return std::nullopt;
     const double step = -f / df;
     s += step;
-    if (s < 0.0 || s > spline_->length()) return std::nullopt;
+    if (!(s >= 0.0 && s <= spline_->length())) return std::nullopt;
     if (std::fabs(step) < 1e-11) return s;
   }
   return std::nullopt;

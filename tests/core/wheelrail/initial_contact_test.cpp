@@ -122,5 +122,54 @@ TEST(InitialContactPoint, SampledAngleIsTheRailsInclinationThere) {
   EXPECT_NEAR(r.force_T(1) - fy, predicted, 0.15 * std::fabs(predicted));
 }
 
+// A worn pair whose measured rail ends just beyond the gauge corner: at y = 1 mm and 100 kN the
+// initial contact point lies at the rail profile's end, where the resultant's location cannot be
+// put on the rail. The solve still ends with finite forces, no location, and the warning that
+// names the truncated profile (it once stopped with "arc length nan").
+TEST(InitialContactPoint, AtTheEndOfTheRailProfileWarnsInsteadOfFailing) {
+  const std::string text = R"([problem]
+type = "wheel-rail"
+[rail]
+profile = "rail_left_iter795.ban"
+smooth = 2.0
+mirror_y = true
+[wheel]
+profile = "whl_left_iter795.whl"
+smooth = 2.0
+[track]
+gauge_height = 14.0
+cant = 0.025
+[wheelset]
+flange_back_distance = 1360.0
+flange_back_position = 0.0
+nominal_radius = 460.0
+[friction]
+alpha_deg = [-30.0, -20.0]
+mu = [0.2, 0.35]
+[grid]
+dx = 0.5
+ds = 0.5
+[method]
+reference = "planar"
+position = "initial"
+angle = "sampled"
+[state]
+velocity = 15000.0
+y = 1.0
+fz = 100000.0
+)";
+  const WheelRailResult r = SolveWheelRail(
+      ParseCase(text, fs::path(WRC_SOURCE_DIR) / "tables" / "profiles", "icp_end.toml"));
+  EXPECT_EQ(r.status, SolverStatus::kConverged);
+  EXPECT_NEAR(r.force_T(2), 1e5, 1e-6 * 1e5 + 1e-3);
+  EXPECT_TRUE(std::isfinite(r.force_T(1)));
+  EXPECT_FALSE(r.has_force_location);
+  bool warned = false;
+  for (const std::string& w : r.warnings) {
+    warned = warned || w.find("reaches an end of the rail profile") != std::string::npos;
+  }
+  EXPECT_TRUE(warned);
+}
+
 }  // namespace
 }  // namespace wrc
