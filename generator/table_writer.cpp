@@ -103,11 +103,13 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
     const std::string& name = scene.outputs[k];
     h5::Dataset dataset = outputs.WriteDataset<double>(name, shape, data.values[k], storage);
     dataset.WriteStringAttribute("unit", std::string(SceneQuantityUnit(name)));
+    dataset.WriteStringArrayAttribute("dimensions", axis_names);
   }
   outputs.WriteStringArrayAttribute("order", scene.outputs);
 
-  file.WriteDataset<std::int8_t>("status", shape, data.status, storage)
-      .WriteStringAttribute("meaning", "0 ok, 1 no contact, 2 not converged, 3 error");
+  h5::Dataset status = file.WriteDataset<std::int8_t>("status", shape, data.status, storage);
+  status.WriteStringAttribute("meaning", "0 ok, 1 no contact, 2 not converged, 3 error");
+  status.WriteStringArrayAttribute("dimensions", axis_names);
   file.WriteDataset<float>("solve_time_s", shape, data.solve_time_s, storage)
       .WriteStringAttribute("unit", "s");
 

@@ -42,6 +42,10 @@ std::string NodeText(std::size_t node, const std::vector<Axis>& axes,
 // can only be a damaged dataspace, refused before anything is allocated for it.
 constexpr h5::Size kMaxAxisNodes = h5::Size{1} << 24;
 
+// Most nodes in a table: 2^32, 34 GB per output. Any table a machine can hold is far smaller;
+// the bound keeps the node count and every offset within std::size_t.
+constexpr h5::Size kMaxTableNodes = h5::Size{1} << 32;
+
 [[noreturn]] void Invalid(const std::string& where, const std::string& problem) {
   throw LoadError(WRC_ERR_FORMAT, where + ": " + problem);
 }
@@ -104,6 +108,47 @@ void IndexBuckets(Axis& axis) {
   }
 }
 
+// A grid dataset's attribute 'dimensions' (written since tables name them) must list the axes
+// of /axes 'order': a reordered 'order' with equal axis lengths would otherwise pass the shape
+// check and transpose the data. Tables without the attribute are read as before.
+void CheckDimensions(const h5::Dataset& dataset, const std::vector<std::string>& axis_names,
+                     const std::string& where) {
+  if (!dataset.HasAttribute("dimensions")) return;
+  const std::vector<std::string> dimensions = dataset.ReadStringArrayAttribute("dimensions");
+  if (dimensions == axis_names) return;
+  std::string listed;
+  for (const std::string& name : dimensions) listed += (listed.empty() ? "" : ", ") + name;
+  std::string ordered;
+  for (const std::string& name : axis_names) ordered += (ordered.empty() ? "" : ", ") + name;
+  Invalid(where, "its dimensions are (" + listed + ") but /axes 'order' lists (" + ordered + ")");
+}
+
+// The node values obey the limits of include/wrc/runtime.h: finite, strictly ascending, and
+// spaced so that no step, span or reciprocal overflows or loses the position within a cell.
+void CheckAxisValues(const std::vector<double>& values, const std::string& where) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::ostringstream problem;
+    problem.precision(17);
+    if (!std::isfinite(values[i])) {
+      problem << "value " << i << " is not finite";
+    } else if (std::abs(values[i]) > WRC_AXIS_MAX_MAGNITUDE) {
+      problem << "value " << i << " (" << values[i] << ") is beyond ±" << WRC_AXIS_MAX_MAGNITUDE;
+    } else if (i > 0 && !(values[i] > values[i - 1])) {
+      problem << "values must be strictly ascending, but value " << i << " (" << values[i]
+              << ") follows " << values[i - 1];
+    } else if (i > 0) {
+      const double step = values[i] - values[i - 1];
+      const double magnitude = std::max(std::abs(values[i]), std::abs(values[i - 1]));
+      if (step < WRC_AXIS_MIN_STEP || step < WRC_AXIS_MIN_RELATIVE_STEP * magnitude) {
+        problem << "values " << i - 1 << " and " << i << " (" << values[i - 1] << ", " << values[i]
+                << ") are too close: a step must be at least " << WRC_AXIS_MIN_STEP << " and "
+                << WRC_AXIS_MIN_RELATIVE_STEP << " of the values' magnitude";
+      }
+    }
+    if (!problem.str().empty()) Invalid(where, problem.str());
+  }
+}
+
 Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
   const std::string where = axes_group.FileName() + ":/axes/" + name;
   if (name.empty() || name.find('/') != std::string::npos) {
@@ -125,18 +170,7 @@ Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
   axis.name = name;
   axis.unit = OptionalStringAttribute(dataset, "unit");
   axis.values = dataset.Read<double>();
-  for (std::size_t i = 0; i < axis.values.size(); ++i) {
-    if (!std::isfinite(axis.values[i])) {
-      Invalid(where, "value " + std::to_string(i) + " is not finite");
-    }
-    if (i > 0 && !(axis.values[i] > axis.values[i - 1])) {
-      std::ostringstream problem;
-      problem.precision(17);
-      problem << "values must be strictly ascending, but value " << i << " (" << axis.values[i]
-              << ") follows " << axis.values[i - 1];
-      Invalid(where, problem.str());
-    }
-  }
+  CheckAxisValues(axis.values, where);
   const std::size_t n = axis.values.size();
   if (n >= 2) {
     const double mean_step = (axis.values[n - 1] - axis.values[0]) / static_cast<double>(n - 1);
@@ -253,7 +287,17 @@ Table Table::Load(const std::string& path) {
     table.axes_.push_back(ReadAxis(axes_group, name));
   }
   std::vector<h5::Size> grid_shape;
-  for (const Axis& axis : table.axes_) grid_shape.push_back(axis.values.size());
+  h5::Size num_nodes = 1;
+  for (const Axis& axis : table.axes_) {
+    grid_shape.push_back(axis.values.size());
+    // Multiplied without overflow: a product that wrapped would size the data wrongly.
+    if (axis.values.size() > kMaxTableNodes / num_nodes) {
+      Invalid(where + "/axes", "axes of lengths " + ShapeText(grid_shape) +
+                                   " (and any after them) make more than " +
+                                   std::to_string(kMaxTableNodes) + " nodes");
+    }
+    num_nodes *= axis.values.size();
+  }
 
   table.IndexAxes();
 
@@ -293,6 +337,7 @@ Table Table::Load(const std::string& path) {
                                 ShapeText(grid_shape));
     }
     RequireType(dataset, h5::ElementType::kFloat64, output_where);
+    CheckDimensions(dataset, axis_names, output_where);
     const std::vector<double> values = dataset.Read<double>();
     for (std::size_t node = 0; node < table.num_nodes_; ++node) {
       table.values_[node * n_out + k] = values[node];
@@ -310,6 +355,7 @@ Table Table::Load(const std::string& path) {
                                    " does not match the axis lengths " + ShapeText(grid_shape));
   }
   RequireType(status, h5::ElementType::kInt8, where + "/status");
+  CheckDimensions(status, axis_names, where + "/status");
   table.status_ = status.Read<std::int8_t>();
 
   // A node that solved fine must carry finite numbers; failed nodes may hold NaN, which Eval

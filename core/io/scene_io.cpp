@@ -12,6 +12,7 @@
 
 #include "core/io/case_parser.h"
 #include "wrc/errors.h"
+#include "wrc/runtime.h"
 #include "wrc/scene.h"
 
 namespace wrc {
@@ -48,9 +49,18 @@ std::string QuotedList(const std::vector<std::string_view>& names) {
 /// and CaseAtPoint so that sampled points obey the same rules as the grid.
 std::string AxisValueProblem(std::string_view name, double value) {
   if (!std::isfinite(value)) return "must be a finite number";
+  if (std::abs(value) > WRC_AXIS_MAX_MAGNITUDE) return "is beyond the ±1e30 a table axis may hold";
   if (name == "mu" && value < 0.0) return "must not be negative";
   if (name == "fz" && !(value > 0.0)) return "must be positive";
   return {};
+}
+
+/// Whether neighbouring axis values are far enough apart for the runtime to interpolate
+/// between them (the limits in wrc/runtime.h).
+bool StepIsResolvable(double a, double b) {
+  const double step = b - a;
+  return step >= WRC_AXIS_MIN_STEP &&
+         step >= WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b));
 }
 
 /// The [state] / [friction] keys that an axis replaces; giving both is ambiguous.
@@ -77,6 +87,11 @@ std::vector<double> ReadExplicitValues(const SourceFile& file, const toml::array
       file.Fail(&element, element_path,
                 "axis values must be strictly ascending (previous value " +
                     DescribeValue(*array.get(i - 1)) + ")");
+    }
+    if (!values.empty() && !StepIsResolvable(values.back(), value)) {
+      file.Fail(&element, element_path,
+                "is too close to the previous value " + DescribeValue(*array.get(i - 1)) +
+                    " for a table axis (steps of at least 1e-30 and 1e-9 of the values)");
     }
     values.push_back(value);
   }
@@ -156,7 +171,7 @@ std::vector<double> ReadRangeValues(const SourceFile& file, const toml::table& r
   }
   // Rounding could, in principle, make two neighbours equal for a tiny step on large values.
   for (std::size_t i = 1; i < values.size(); ++i) {
-    if (!(values[i] > values[i - 1])) {
+    if (!(values[i] > values[i - 1]) || !StepIsResolvable(values[i - 1], values[i])) {
       file.FailAt(range.source().begin, path, "step is too small to give distinct values");
     }
   }

@@ -83,6 +83,18 @@ typedef struct wrc_table wrc_table;
 /** Largest number of axes a table may have. */
 #define WRC_MAX_AXES 8
 
+/** @name Axis values a table may hold
+ *  Every node lies within ±WRC_AXIS_MAX_MAGNITUDE; neighbouring nodes are at least
+ *  WRC_AXIS_MIN_STEP apart and at least WRC_AXIS_MIN_RELATIVE_STEP of the larger magnitude of
+ *  the two. Axes are physical quantities in mm, N, mrad, ‰ or mm/s, far inside these bounds;
+ *  the bounds keep every reciprocal and product the interpolation forms finite, and the
+ *  position within a cell resolved to better than 1e-6 of the cell.
+ *  @{ */
+#define WRC_AXIS_MAX_MAGNITUDE 1e30
+#define WRC_AXIS_MIN_STEP 1e-30
+#define WRC_AXIS_MIN_RELATIVE_STEP 1e-9
+/** @} */
+
 /* ---------------------------------------------------------------------------------------------
  * The table API
  * ------------------------------------------------------------------------------------------- */

@@ -237,6 +237,61 @@ TEST(RuntimeLoad, AxisDescending) {
   ExpectOpenError(scratch.path(), WRC_ERR_FORMAT, {"/axes/y", "strictly ascending", "value 1"});
 }
 
+// Axes whose span overflows, whose steps are subnormal or too small for their magnitude
+// would make the cell search or the interpolation weights infinite: refused, not evaluated.
+TEST(RuntimeLoad, AxisValuesBeyondTheLimitsAreRefused) {
+  const std::vector<std::pair<std::vector<double>, std::string>> cases = {
+      {{-1e308, 0.0, 1e308}, "beyond"},     {{-1.0, 0.0, 1e31}, "beyond"},
+      {{0.0, 1e-310, 2e-310}, "too close"}, {{0.0, 1e-300, 2e-300}, "too close"},
+      {{0.0, 5e-324}, "too close"},         {{1.0, 1.0 + 1e-12, 2.0}, "too close"},
+  };
+  for (const auto& [values, fragment] : cases) {
+    ScratchFile scratch("limits");
+    WriteDamaged(scratch.path(), [&values = values](wrc::h5::File& file) {
+      wrc::h5::Group axes = file.OpenGroup("axes");
+      axes.Remove("roll");
+      axes.WriteDataset<double>("roll", {values.size()}, values);
+    });
+    ExpectOpenError(scratch.path(), WRC_ERR_FORMAT, {":/axes/roll", fragment});
+  }
+}
+
+TEST(RuntimeLoad, AxesWhoseNodeCountOverflowsAreRefused) {
+  ScratchFile scratch("overflow");
+  WriteDamaged(scratch.path(), [](wrc::h5::File& file) {
+    wrc::h5::Group axes = file.OpenGroup("axes");
+    const std::vector<double> values = wrc::test::Linspace(0.0, 65535.0, 65536);
+    std::vector<std::string> order;
+    for (const std::string name : {"a", "b", "c", "d"}) {
+      axes.WriteDataset<double>(name, {values.size()}, values);
+      order.push_back(name);
+    }
+    axes.RemoveAttribute("order");
+    axes.WriteStringArrayAttribute("order", order);
+  });
+  ExpectOpenError(scratch.path(), WRC_ERR_FORMAT, {":/axes", "more than 4294967296 nodes"});
+}
+
+// Axes of equal length listed in another order would pass every shape check and transpose the
+// data; the grid datasets' 'dimensions' catch it. Without the attribute the order is trusted.
+TEST(RuntimeLoad, AxisOrderThatContradictsTheDimensionsIsRefused) {
+  TableContent content = SmallTable();
+  content.axes = {{"y", {-1.0, 0.0, 1.0}, "mm"}, {"roll", {-0.002, 0.0, 0.002}, "rad"}};
+  ScratchFile scratch("transposed");
+  wrc::test::WriteTable(scratch.path(), content);
+  {
+    wrc::h5::File file = wrc::h5::File::Open(scratch.path(), wrc::h5::File::Mode::kReadWrite);
+    file.OpenGroup("axes").WriteStringArrayAttribute("order", {"roll", "y"});
+  }
+  ExpectOpenError(scratch.path(), WRC_ERR_FORMAT,
+                  {":/outputs/fy", "dimensions are (y, roll)", "lists (roll, y)"});
+
+  content.write_dimensions = false;
+  ScratchFile older("older");
+  wrc::test::WriteTable(older.path(), content);
+  EXPECT_EQ(TryOpen(older.path()).code, 0);
+}
+
 TEST(RuntimeLoad, AxisListedInOrderButAbsent) {
   ScratchFile scratch("absent-axis");
   WriteDamaged(scratch.path(), [](wrc::h5::File& file) {

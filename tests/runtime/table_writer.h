@@ -39,6 +39,9 @@ struct TableContent {
   h5::FileFormat format = h5::FileFormat::kChecksummed;
   /// Storage of the axes (the generator checksums them too; default: contiguous, unfiltered).
   h5::DatasetOptions axis_storage = {};
+  /// Name the axes of every grid dataset in its attribute 'dimensions', as the generator does
+  /// (tables written before it did lack the attribute).
+  bool write_dimensions = true;
 };
 
 /// n values from first to last, equally spaced (last exactly).
@@ -104,6 +107,7 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
     h5::Dataset dataset =
         outputs.WriteDataset(content.outputs[k], shape, values, h5::CompressedChecked());
     dataset.WriteStringAttribute("unit", "N");
+    if (content.write_dimensions) dataset.WriteStringArrayAttribute("dimensions", order);
   }
   if (content.write_output_order) outputs.WriteStringArrayAttribute("order", content.outputs);
 
@@ -112,7 +116,8 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
     for (std::size_t node = 0; node < n_nodes; ++node)
       status[node] = content.status(coordinates[node]);
   }
-  file.WriteDataset("status", shape, status, h5::CompressedChecked());
+  h5::Dataset status_dataset = file.WriteDataset("status", shape, status, h5::CompressedChecked());
+  if (content.write_dimensions) status_dataset.WriteStringArrayAttribute("dimensions", order);
   file.WriteDataset("solve_time_s", shape, std::vector<float>(n_nodes, 0.01f),
                     h5::CompressedChecked());
 

@@ -78,7 +78,66 @@ TEST(Verify, ErrorsShrinkWhenTheTableIsRefined) {
                            "' --samples 4 --tolerance 1e-12",
                        &out),
             1);
+  EXPECT_NE(out.find("EXCEEDED by fx (max_rel"), std::string::npos) << out;
   EXPECT_EQ(RunCommand(Wrc() + " verify '" + (dir / "missing.h5").string() + "'", &out), 2);
+  // A tolerance that is no number >= 0 would silently disable the gate: a command-line error.
+  for (const char* tolerance : {"-1", "nan", "-inf", "inf"}) {
+    EXPECT_EQ(RunCommand(Wrc() + " verify '" + (dir / "table_0.h5").string() +
+                             "' --samples 2 --tolerance=" + tolerance,
+                         &out),
+              2)
+        << tolerance;
+  }
+}
+
+// fz prescribed in [state] and stored varies only by the vertical-force iteration's tolerance
+// (1e-6 of the load); dividing its error by that range would fail every gate. Its max_rel is
+// relative to a thousandth of the load at least.
+TEST(Verify, PrescribedLoadDoesNotFailTheGate) {
+  const fs::path dir = fs::temp_directory_path() / "wrc_verify_prescribed";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path table = dir / "table.h5";
+  std::string out;
+  ASSERT_EQ(RunCommand(Wrc() + " generate '" + WriteScene(dir, 1.0).string() + "' -o '" +
+                           table.string() + "' --quiet --threads 2",
+                       &out),
+            0);
+  ASSERT_EQ(RunCommand(Wrc() + " verify '" + table.string() + "' --samples 8 --json", &out), 0);
+  const nlohmann::json fz = nlohmann::json::parse(out)["outputs"]["fz"];
+  EXPECT_GE(fz["scale"].get<double>(), 10.0);  // 1e-3 of 10 kN
+  EXPECT_LT(fz["range"].get<double>(), 1.0);
+  EXPECT_LT(fz["max_rel"].get<double>(), 1e-3);
+}
+
+// A table whose every exact solve fails (here every point: the wheel is nowhere above the rail)
+// verifies nothing: an error naming the first failure, and no output "meets" a tolerance.
+TEST(Verify, NothingVerifiedIsAnError) {
+  const fs::path dir = fs::temp_directory_path() / "wrc_verify_nothing";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path scene = WriteScene(dir, 1.0);
+  std::ifstream in(scene);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string shifted = text.str();
+  shifted.replace(shifted.find("from = 0.0, to = 4.0"), 20, "from = 200.0, to = 202.0");
+  std::ofstream(dir / "away.toml") << shifted;
+  const fs::path table = dir / "away.h5";
+  std::string out;
+  ASSERT_EQ(RunCommand(Wrc() + " generate '" + (dir / "away.toml").string() + "' -o '" +
+                           table.string() + "' --quiet --threads 2",
+                       &out),
+            0);
+  EXPECT_EQ(
+      RunCommand(Wrc() + " verify '" + table.string() + "' --samples 3 --tolerance 0.5", &out), 2);
+  EXPECT_NE(out.find("first failed exact solve:"), std::string::npos) << out;
+  EXPECT_NE(out.find("nowhere above the rail"), std::string::npos) << out;
+  EXPECT_NE(out.find("EXCEEDED by fx (no point compared)"), std::string::npos) << out;
+  EXPECT_EQ(RunCommand(Wrc() + " verify '" + table.string() + "' --samples 3 --json", &out), 2);
+  const nlohmann::json report = nlohmann::json::parse(out);
+  EXPECT_TRUE(report["outputs"]["fy"]["max_rel"].is_null());
+  EXPECT_EQ(report["exact_status"]["error"].get<int>(), 3);
 }
 
 }  // namespace

@@ -49,6 +49,24 @@ double FiniteRange(const std::vector<double>& values, double if_flat) {
   return hi > lo ? hi - lo : if_flat;
 }
 
+// What max_rel divides by: the output's range over the table, but at least a thousandth of
+// its largest magnitude. An output that is constant by construction (fz prescribed in
+// [state]) varies only by the solver's tolerance; its range would turn that into a huge
+// "relative" error.
+struct ErrorScale {
+  double range = 0.0;
+  double scale = 0.0;
+};
+
+ErrorScale ErrorScaleOf(const std::vector<double>& values) {
+  double largest = 0.0;
+  for (double v : values) {
+    if (std::isfinite(v)) largest = std::max(largest, std::fabs(v));
+  }
+  const double range = FiniteRange(values, 0.0);
+  return {range, std::max(range, 1e-3 * largest)};
+}
+
 // Sample points: uniform, or a Latin hypercube (each axis range cut into N strata, one sample
 // per stratum, strata shuffled independently per axis).
 std::vector<std::vector<double>> Sample(const std::vector<std::vector<double>>& axes, int n,
@@ -176,7 +194,7 @@ double Max(const std::vector<double>& values) {
 json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 // The statistics of one output in one interpolation mode.
-json OutputReport(const Verification& v, std::size_t o, bool cubic, double range) {
+json OutputReport(const Verification& v, std::size_t o, bool cubic, const ErrorScale& range) {
   std::vector<double> abs, rel_load, same_abs, same_load, change_abs, change_load;
   std::size_t worst = 0;
   double worst_error = -1.0;
@@ -203,11 +221,15 @@ json OutputReport(const Verification& v, std::size_t o, bool cubic, double range
       worst_point[v.axis_names[a]] = v.points[worst].point[a];
     }
   }
-  json report = {{"max_abs", abs.empty() ? 0.0 : Max(abs)},
-                 {"rms", abs.empty() ? 0.0 : Rms(abs)},
-                 {"p95_abs", abs.empty() ? 0.0 : Percentile(abs, 0.95)},
-                 {"max_rel", range > 0.0 && !abs.empty() ? Max(abs) / range : 0.0},
-                 {"range", range},
+  // No compared point: null, not a zero error that nothing measured.
+  json report = {{"max_abs", Number(Max(abs))},
+                 {"rms", Number(Rms(abs))},
+                 {"p95_abs", Number(Percentile(abs, 0.95))},
+                 {"max_rel", abs.empty()         ? json(nullptr)
+                             : range.scale > 0.0 ? json(Max(abs) / range.scale)
+                                                 : json(0.0)},
+                 {"range", range.range},
+                 {"scale", range.scale},
                  {"compared", abs.size()},
                  {"worst", worst_point}};
   if (force) {
@@ -280,7 +302,8 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
 
 void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& points, int threads,
                   std::vector<std::vector<double>>* values, std::vector<int>* status,
-                  std::vector<double>* seconds) {
+                  std::vector<double>* seconds, std::vector<std::string>* messages) {
+  messages->assign(points.size(), {});
   values->assign(points.size(), {});
   status->assign(points.size(), 3);
   seconds->assign(points.size(), 0.0);
@@ -294,8 +317,9 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
                        : r.status == SolverStatus::kNoContact ? 1
                                                               : 2;
         (*values)[k] = SceneOutputValues(scene, r, static_cast<PointStatus>((*status)[k]));
-      } catch (const std::exception&) {
+      } catch (const std::exception& e) {
         (*status)[k] = 3;
+        (*messages)[k] = e.what();
       }
       (*seconds)[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
@@ -320,10 +344,10 @@ Verification VerifyTable(const VerifyOptions& opt) {
   const h5::File file = h5::File::Open(opt.table);
   const h5::Group outputs_group = file.OpenGroup("outputs");
   std::vector<std::vector<double>> values(n_out);
-  std::vector<double> range(n_out, 0.0);
+  std::vector<ErrorScale> range(n_out);
   for (std::size_t o = 0; o < n_out; ++o) {
     values[o] = outputs_group.OpenDataset(v.output_names[o]).Read<double>();
-    range[o] = FiniteRange(values[o], 0.0);
+    range[o] = ErrorScaleOf(values[o]);
   }
   const auto patches_output = std::find(v.output_names.begin(), v.output_names.end(), "n_patches");
   const std::vector<std::vector<double>> points =
@@ -333,7 +357,8 @@ Verification VerifyTable(const VerifyOptions& opt) {
   std::vector<std::vector<double>> exact;
   std::vector<int> status;
   std::vector<double> seconds;
-  SolveExactly(scene, points, opt.threads, &exact, &status, &seconds);
+  std::vector<std::string> messages;
+  SolveExactly(scene, points, opt.threads, &exact, &status, &seconds, &messages);
   v.points.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
     v.points[k].point = points[k];
@@ -366,6 +391,9 @@ Verification VerifyTable(const VerifyOptions& opt) {
                             {"not_converged", counts[2]},
                             {"error", counts[3]}};
   result["points_in_patch_change_cells"] = cells_with_change;
+  const auto first_error =
+      std::find_if(messages.begin(), messages.end(), [](const auto& m) { return !m.empty(); });
+  if (first_error != messages.end()) result["first_error"] = *first_error;
   for (Interpolation mode : {Interpolation::kLinear, Interpolation::kCubic}) {
     table.set_interpolation(mode);
     const bool cubic = mode == Interpolation::kCubic;

@@ -55,9 +55,9 @@ struct Verification {
 Verification VerifyTable(const VerifyOptions& options);
 
 /// Exact solves of the scene at the given points (all threads); each result holds the scene's
-/// outputs in order, status as in VerifiedPoint.
+/// outputs in order, status as in VerifiedPoint, and for a solve that threw, its message.
 void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& points, int threads,
                   std::vector<std::vector<double>>* values, std::vector<int>* status,
-                  std::vector<double>* seconds);
+                  std::vector<double>* seconds, std::vector<std::string>* messages);
 
 }  // namespace wrc::cli

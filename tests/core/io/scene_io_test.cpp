@@ -265,6 +265,13 @@ TEST(SceneIo, RejectsBadRanges) {
   ExpectSceneError(SceneWith(axes + "y = [0.0, 1.0, 1.0]\n"),
                    "y =", {"table.y[2] = 1", "strictly ascending"});
   ExpectSceneError(SceneWith(axes + "y = []\n"), "y =", {"table.y", "at least one value"});
+  // Values the runtime could not interpolate between: refused before any point is solved.
+  ExpectSceneError(SceneWith(axes + "y = [0.0, 5e-324]\n"), "y =", {"table.y[1]", "too close"});
+  ExpectSceneError(SceneWith(axes + "y = [1.0, 1.0000000000001]\n"),
+                   "y =", {"table.y[1]", "too close"});
+  ExpectSceneError(SceneWith(axes + "y = [-1e308, 0.0]\n"), "y =", {"table.y[0]", "beyond"});
+  ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1e-300, count = 3}\n"),
+                   "y =", {"table.y", "too small"});
   ExpectSceneError(SceneWith(axes + "y = [0.0, nan]\n"), "y =", {"table.y[1] = nan", "finite"});
   ExpectSceneError(SceneWith(axes + "y = {from = nan, to = 1.0, step = 0.1}\n"),
                    "y =", {"table.y.from = nan", "finite"});
