@@ -546,6 +546,7 @@ GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options,
 GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options) {
   if (options.output.empty()) throw InputError("wrc generate: no output file given");
   RequireRegularOutput(options.output);  // before any solving, not after it
+  RequireNotAnInput(options.output, {scene.base.rail.path, scene.base.wheel.path});
   std::unique_ptr<Cluster> cluster;
   if (options.mpi == MpiMode::kAuto) cluster = gen::JoinClusterIfLaunched();
   if (scene.refine) return gen::RefineTable(scene, options, cluster.get());

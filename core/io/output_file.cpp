@@ -51,6 +51,22 @@ void WriteAll(int fd, std::string_view text, const std::filesystem::path& path) 
 
 }  // namespace
 
+void RequireNotAnInput(const std::filesystem::path& output,
+                       const std::vector<std::filesystem::path>& inputs) {
+  std::error_code ignored;
+  const std::filesystem::path normal = std::filesystem::weakly_canonical(output, ignored);
+  for (const std::filesystem::path& input : inputs) {
+    if (input.empty()) continue;
+    const bool same =
+        std::filesystem::equivalent(output, input, ignored) ||
+        (!normal.empty() && normal == std::filesystem::weakly_canonical(input, ignored));
+    if (same) {
+      throw InputError(output.string() + ": is also an input of this command (" + input.string() +
+                       "); writing there would overwrite it");
+    }
+  }
+}
+
 void RequireRegularOutput(const std::filesystem::path& path) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) {

@@ -6,12 +6,18 @@
 
 #include <filesystem>
 #include <string_view>
+#include <vector>
 
 namespace wrc {
 
 /// Throws InputError when something that is not a regular file (a device, FIFO, socket,
 /// directory, or a symlink to one of those) exists at path. A missing path is fine.
 void RequireRegularOutput(const std::filesystem::path& path);
+
+/// Throws InputError when output is the same file as one of inputs (by device and inode where
+/// both exist, else by their normalised paths): a command must not overwrite what it reads.
+void RequireNotAnInput(const std::filesystem::path& output,
+                       const std::vector<std::filesystem::path>& inputs);
 
 /// Creates path as a new, empty regular file: O_CREAT | O_EXCL | O_NOFOLLOW, so a symlink
 /// planted at that name is never followed. A regular file already there (left over by an

@@ -12,6 +12,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "tests/tools/tool_test_util.h"
 
 namespace {
 
@@ -124,6 +127,47 @@ TEST_F(CliFiles, OutOnAFullDiskIsAnErrorAndLeavesNoFile) {
   EXPECT_EQ(WEXITSTATUS(status), 2);
   EXPECT_FALSE(fs::exists(out / "fields.csv"));
   EXPECT_FALSE(fs::exists(out / "fields.csv.tmp"));
+}
+
+// A command never writes onto one of its inputs, under any spelling of the path: the table
+// onto its scene or profile, verify's CSV or map onto the table.
+TEST_F(CliFiles, OutputsNeverOverwriteTheirInputs) {
+  const fs::path profiles = fs::path(WRC_SOURCE_DIR) / "tables" / "profiles";
+  fs::copy_file(profiles / "MBench_UIC60_v3.prr", dir_ / "rail.prr");
+  const std::string scene_text =
+      "[problem]\ntype = \"wheel-rail\"\n[rail]\nprofile = \"rail.prr\"\n[wheel]\nprofile = \"" +
+      (profiles / "MBench_S1002_v3.prw").string() +
+      "\"\n[grid]\ndx = 0.5\nds = 0.5\n[method]\nreference = \"planar\"\n[state]\nfz = "
+      "10000.0\nyaw = 0.002\nvelocity = 2000.0\n[table]\naxes = [\"y\"]\ny = [0.0, 1.0]\n"
+      "outputs = [\"fy\"]\n";
+  const fs::path scene = dir_ / "scene.toml";
+  std::ofstream(scene) << scene_text;
+  const std::string rail_text = wrc::tool_test::ReadFile(dir_ / "rail.prr");
+  const std::vector<std::string> outputs = {"scene.toml", "./scene.toml", "rail.prr",
+                                            "../" + dir_.filename().string() + "/rail.prr"};
+  for (const std::string& output : outputs) {
+    const Outcome outcome =
+        Run("generate " + Quoted(scene.string()) + " -o " + Quoted((dir_ / output).string()));
+    EXPECT_EQ(outcome.exit_code, 2) << output << ": " << outcome.err;
+    EXPECT_NE(outcome.err.find("is also an input"), std::string::npos) << outcome.err;
+  }
+  EXPECT_EQ(wrc::tool_test::ReadFile(scene), scene_text);
+  EXPECT_EQ(wrc::tool_test::ReadFile(dir_ / "rail.prr"), rail_text);
+
+  const fs::path table = dir_ / "table.h5";
+  ASSERT_EQ(Run("generate " + Quoted(scene.string()) + " -o " + Quoted(table.string()) + " --quiet")
+                .exit_code,
+            0);
+  const auto table_size = fs::file_size(table);
+  const std::vector<std::string> verify_outputs = {" --csv " + Quoted(table.string()),
+                                                   " --map y,y --png " + Quoted(table.string())};
+  for (const std::string& args : verify_outputs) {
+    const Outcome outcome = Run("verify " + Quoted(table.string()) + " --samples 2" + args);
+    EXPECT_EQ(outcome.exit_code, 2) << args << ": " << outcome.err;
+    EXPECT_NE(outcome.err.find("is also an input"), std::string::npos) << outcome.err;
+  }
+  EXPECT_EQ(fs::file_size(table), table_size);
+  EXPECT_EQ(Run("info " + Quoted(table.string())).exit_code, 0);
 }
 
 }  // namespace

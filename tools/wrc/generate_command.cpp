@@ -10,6 +10,7 @@
 #include "tools/wrc/commands.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/output_file.h"
 #include "wrc/scene.h"
 
 namespace wrc::cli {
@@ -97,6 +98,7 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
                 "point's z (slower; results differ in the last digits)");
   cmd->callback([=]() {
     try {
+      RequireNotAnInput(*output, {*scene_path});
       const Scene scene = LoadScene(*scene_path);
       GenerateOptions options;
       options.output = *output;

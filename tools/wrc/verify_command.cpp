@@ -19,6 +19,7 @@
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
 #include "wrc/errors.h"
+#include "wrc/output_file.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {
@@ -41,8 +42,7 @@ struct CommandOptions {
 double Get(const json& j) { return j.is_number() ? j.get<double>() : NAN; }
 
 void WriteCsv(const Verification& v, const std::string& path) {
-  std::ofstream csv(path);
-  if (!csv) throw InputError(path + ": cannot write the CSV file");
+  std::ostringstream csv;
   csv.precision(12);
   for (const std::string& axis : v.axis_names) csv << axis << ',';
   csv << "status,load,patch_change";
@@ -61,8 +61,7 @@ void WriteCsv(const Verification& v, const std::string& path) {
     }
     csv << '\n';
   }
-  csv.flush();
-  if (!csv) throw InputError(path + ": writing the CSV file failed");
+  WriteFileAtomically(path, csv.str());
 }
 
 // The output the map shows by default: the force with the largest p95 error relative to the
@@ -284,7 +283,20 @@ void RequireSomeExactSolve(const Verification& v) {
                    why + "; the table could not be verified");
 }
 
+// Every file this run writes, checked before the (long) exact solves: none may be the table.
+void RequireOutputsApartFromTheTable(const CommandOptions& opt) {
+  const fs::path table = opt.verify.table;
+  if (!opt.csv.empty()) RequireNotAnInput(opt.csv, {table});
+  if (opt.map_axes.empty()) return;
+  for (const char* extension : {"", ".dat", ".nodes", ".gp"}) {
+    fs::path file = opt.png;
+    if (*extension != '\0') file.replace_extension(extension);
+    RequireNotAnInput(file, {table});
+  }
+}
+
 int RunVerify(const CommandOptions& opt) {
+  RequireOutputsApartFromTheTable(opt);
   const Verification v = VerifyTable(opt.verify);
   if (!opt.csv.empty()) WriteCsv(v, opt.csv);
   if (!opt.map_axes.empty()) WriteErrorMap(v, opt);
