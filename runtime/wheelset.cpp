@@ -7,6 +7,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "runtime/scene_values.h"
 #include "runtime/table.h"
@@ -254,12 +255,30 @@ void Totals(const wrc_wheelset& ws, wrc_wheelset_result& r) {
   }
 }
 
+// The pose must be finite (NaN: WRC_ERR_NAN_INPUT, ±inf: invalid); fz and mu may be NaN (not
+// known) but not infinite. An infinite value would otherwise be clamped to the table or, for a
+// quantity without an axis, compare equal to nothing and pass unflagged.
 int CheckState(const wrc_wheelset_state& s) {
-  const double pose[] = {s.y, s.z, s.roll, s.yaw, s.vy, s.vroll, s.vyaw, s.omega, s.velocity};
-  for (const double v : pose) {
+  const std::pair<const char*, double> pose[] = {
+      {"y", s.y},       {"z", s.z},         {"roll", s.roll},
+      {"yaw", s.yaw},   {"vy", s.vy},       {"vroll", s.vroll},
+      {"vyaw", s.vyaw}, {"omega", s.omega}, {"velocity", s.velocity}};
+  for (const auto& [name, v] : pose) {
     if (std::isnan(v)) {
-      SetLastError("wrc_wheelset_eval: a state value is NaN");
+      SetLastError("wrc_wheelset_eval: state.%s is NaN", name);
       return WRC_ERR_NAN_INPUT;
+    }
+    if (std::isinf(v)) {
+      SetLastError("wrc_wheelset_eval: state.%s = %g, must be finite", name, v);
+      return WRC_ERR_INVALID_ARGUMENT;
+    }
+  }
+  const std::pair<const char*, double> per_wheel[] = {
+      {"fz[0]", s.fz[0]}, {"fz[1]", s.fz[1]}, {"mu[0]", s.mu[0]}, {"mu[1]", s.mu[1]}};
+  for (const auto& [name, v] : per_wheel) {
+    if (std::isinf(v)) {
+      SetLastError("wrc_wheelset_eval: state.%s = %g, must be finite (or NaN: not known)", name, v);
+      return WRC_ERR_INVALID_ARGUMENT;
     }
   }
   if (!(s.velocity > 0.0) || std::isinf(s.velocity)) {

@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "runtime/scene_values.h"
@@ -90,6 +92,39 @@ TEST_F(RuntimeWheelset, QuantitiesWithoutAxisAreChecked) {
   int flags = 0;
   wheelset.eval(s, &flags);
   EXPECT_EQ(flags, WRC_FLAG_CLAMPED);
+}
+
+// An infinite value would compare equal to no fixed value and pass unflagged, or be clamped to
+// the table: refused, naming the field. NaN fz and mu mean "not known" and stay allowed.
+TEST_F(RuntimeWheelset, InfiniteStateValuesAreRefused) {
+  const WheelsetTable wheelset(table_);
+  const WheelsetTable::State ok = State(1.0, 0.0, 0.002, 0.0, kV0);
+  wrc_wheelset_result r;
+  const std::vector<std::pair<double WheelsetTable::State::*, const char*>> pose = {
+      {&WheelsetTable::State::y, "state.y"},
+      {&WheelsetTable::State::omega, "state.omega"},
+      {&WheelsetTable::State::vyaw, "state.vyaw"},
+      {&WheelsetTable::State::vy, "state.vy"},
+      {&WheelsetTable::State::roll, "state.roll"}};
+  for (const auto& [field, name] : pose) {
+    for (const double bad : {INFINITY, -INFINITY}) {
+      WheelsetTable::State s = ok;
+      s.*field = bad;
+      EXPECT_EQ(wheelset.try_eval(s, r), WRC_ERR_INVALID_ARGUMENT) << name;
+      EXPECT_NE(std::string(wrc_last_error()).find(name), std::string::npos) << wrc_last_error();
+    }
+  }
+  for (int side = 0; side < 2; ++side) {
+    WheelsetTable::State s = ok;
+    s.fz[side] = INFINITY;
+    EXPECT_EQ(wheelset.try_eval(s, r), WRC_ERR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(wrc_last_error()).find("fz[" + std::to_string(side) + "]"),
+              std::string::npos);
+    s = ok;
+    s.mu[side] = -INFINITY;
+    EXPECT_EQ(wheelset.try_eval(s, r), WRC_ERR_INVALID_ARGUMENT);
+  }
+  EXPECT_GE(wheelset.try_eval(ok, r), 0);  // NaN fz and mu: not known
 }
 
 // Without vy, vroll and vyaw axes the velocities enter as the yaw and spin of equal creepage:
