@@ -54,4 +54,13 @@ std::string Sha256FileHex(const std::filesystem::path& path) {
   return HexDigest(context);
 }
 
+void CheckStoredProfileDigest(const std::string& table, const std::string& name,
+                              std::string_view bytes, const std::string& recorded) {
+  if (recorded.empty()) return;
+  const std::string actual = Sha256Hex(bytes);
+  if (actual == recorded) return;
+  throw InputError(table + ":/profiles/" + name + ": its SHA-256 " + actual + " differs from " +
+                   name + "_profile_sha256 " + recorded + " (the profile was damaged or replaced)");
+}
+
 }  // namespace wrc

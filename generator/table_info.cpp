@@ -123,6 +123,11 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
       const h5::Dataset dataset = profiles.OpenDataset(name);
       *out_name = OptionalString(dataset, "name");
       *out_bytes = static_cast<std::size_t>(dataset.NumElements());
+      const std::vector<std::uint8_t> bytes = dataset.Read<std::uint8_t>();
+      CheckStoredProfileDigest(
+          path.string(), name,
+          std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+          OptionalString(file, std::string(name) + "_profile_sha256"));
     }
   }
 

@@ -170,6 +170,11 @@ std::string Sha256Hex(std::string_view bytes);
 /// SHA-256 of a file's bytes; throws InputError when the file cannot be read.
 std::string Sha256FileHex(const std::filesystem::path& path);
 
+/// Throws InputError when a table's stored profile `name` ("rail" or "wheel") does not have
+/// the SHA-256 the table records for it in `recorded` (empty: the table records none).
+void CheckStoredProfileDigest(const std::string& table, const std::string& name,
+                              std::string_view bytes, const std::string& recorded);
+
 /// The version string stored in tables (`wrc_version`).
 const char* GeneratorVersion();
 

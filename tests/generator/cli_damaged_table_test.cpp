@@ -16,6 +16,7 @@
 
 #include "tests/generator/generator_test_util.h"
 #include "tests/runtime/table_writer.h"
+#include "wrc/generator.h"
 
 namespace wrc::test {
 namespace {
@@ -223,6 +224,61 @@ TEST(CliTableCommands, FullStandardOutputIsAnError) {
           .c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+// A table's stored profile is what its points were solved with: bytes that differ from the
+// recorded SHA-256 would verify the table against another profile.
+TEST(CliStoredProfile, BytesThatDifferFromTheDigestAreRefused) {
+  ScratchDir dir("stored_profile_digest");
+  ASSERT_EQ(Generate(dir, (dir / "table.h5").string()).exit_code, 0);
+  {
+    h5::File file = h5::File::Open((dir / "table.h5").string(), h5::File::Mode::kReadWrite);
+    h5::Group profiles = file.OpenGroup("profiles");
+    std::vector<std::uint8_t> bytes = profiles.OpenDataset("rail").Read<std::uint8_t>();
+    bytes[bytes.size() / 2] ^= 1;  // one bit of one coordinate
+    profiles.Remove("rail");
+    profiles.WriteDataset<std::uint8_t>("rail", {bytes.size()}, bytes);
+  }
+  ExpectRefused(dir / "table.h5", "/profiles/rail: its SHA-256");
+}
+
+// verify solves from the table's copies of the profiles, in a scratch directory: the files the
+// scene names (here by absolute path, edited since) are neither read nor written.
+TEST(CliStoredProfile, VerifyLeavesTheScenesProfileFilesAlone) {
+  ScratchDir dir("stored_profile_untouched");
+  fs::copy_file(ProfilePath("MBench_UIC60_v3.prr"), dir / "rail.prr");
+  std::string scene = SmallScene();
+  const std::string original = ProfilePath("MBench_UIC60_v3.prr");
+  scene.replace(scene.find(original), original.size(), (dir / "rail.prr").string());
+  WriteFile(dir / "scene.toml", scene);
+  const std::string in_dir = "cd " + Quoted(dir.path().string()) + " && " + Quoted(WrcBinary());
+  ASSERT_EQ(RunCommand(in_dir + " generate scene.toml -o table.h5", dir.path()).exit_code, 0);
+  WriteFile(dir / "rail.prr", "edited since\n");
+  const CommandResult result = RunCommand(in_dir + " verify --samples 2 table.h5", dir.path());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(ReadFile(dir / "rail.prr"), "edited since\n");
+}
+
+// A stored profile that cannot be read is named as the table's, not as the scratch copy verify
+// solves from (deleted by the time the message is read).
+TEST(CliStoredProfile, AnUnreadableProfileIsNamedAsTheTables) {
+  ScratchDir dir("stored_profile_unreadable");
+  ASSERT_EQ(Generate(dir, (dir / "table.h5").string()).exit_code, 0);
+  {
+    h5::File file = h5::File::Open((dir / "table.h5").string(), h5::File::Mode::kReadWrite);
+    const std::string junk = "not a profile\n1 2 3 x\n";
+    h5::Group profiles = file.OpenGroup("profiles");
+    profiles.Remove("wheel");
+    profiles.WriteDataset<std::uint8_t>("wheel", {junk.size()},
+                                        std::vector<std::uint8_t>(junk.begin(), junk.end()));
+    file.WriteStringAttribute("wheel_profile_sha256", Sha256Hex(junk));
+  }
+  const CommandResult result =
+      RunCommand(Quoted(WrcBinary()) + " verify --samples 2 " + Quoted((dir / "table.h5").string()),
+                 dir.path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find("table.h5:/profiles/wheel"), std::string::npos) << result.err;
+  EXPECT_EQ(result.err.find("wrc_verify_"), std::string::npos) << result.err;
 }
 
 }  // namespace

@@ -30,6 +30,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 void RestoreProfile(const h5::File& file, const std::string& name, const fs::path& target) {
   const h5::Dataset d = file.OpenGroup("profiles").OpenDataset(name);
   const std::vector<std::uint8_t> bytes = d.Read<std::uint8_t>();
+  // Bytes that differ from the recorded digest would verify the table against another profile.
+  const std::string digest = name + "_profile_sha256";
+  CheckStoredProfileDigest(
+      file.FileName(), name,
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+      file.HasAttribute(digest) ? file.ReadStringAttribute(digest) : std::string());
   fs::create_directories(target.parent_path());
   std::ofstream out(target, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()),
@@ -289,13 +295,32 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
   fs::create_directories(stored->scratch);
   stored->scene = ParseScene(text, stored->scratch, table.string() + ":/scene");
-  RestoreProfile(file, "rail", stored->scene.base.rail.path);
-  RestoreProfile(file, "wheel", stored->scene.base.wheel.path);
+  // The profiles are solved from copies inside the scratch directory, whatever paths the scene
+  // names: an absolute or "../" path would otherwise overwrite the user's own file.
+  for (auto [name, source] : {std::pair{"rail", &stored->scene.base.rail},
+                              std::pair{"wheel", &stored->scene.base.wheel}}) {
+    const fs::path file_name = source->path.filename();
+    source->path = stored->scratch / name / (file_name.empty() ? fs::path(name) : file_name);
+    RestoreProfile(file, name, source->path);
+  }
   // Read and spline the profiles once for all sampled points (as LoadScene does).
   for (auto [source, kind] : {std::pair{&stored->scene.base.rail, ProfileKind::kRail},
                               std::pair{&stored->scene.base.wheel, ProfileKind::kWheel}}) {
-    source->spline = std::make_shared<const ProfileSpline>(
-        ReadProfile(source->path.string(), kind, ProfileOptionsOf(*source)));
+    try {
+      source->spline = std::make_shared<const ProfileSpline>(
+          ReadProfile(source->path.string(), kind, ProfileOptionsOf(*source)));
+    } catch (const InputError& error) {
+      // The message names the scratch copy, deleted when verify ends: name the table's copy.
+      std::string message = error.what();
+      const std::string scratch = source->path.string();
+      const std::string stored_at =
+          table.string() + ":/profiles/" + (kind == ProfileKind::kRail ? "rail" : "wheel");
+      for (auto at = message.find(scratch); at != std::string::npos;
+           at = message.find(scratch, at + stored_at.size())) {
+        message.replace(at, scratch.size(), stored_at);
+      }
+      throw InputError(message);
+    }
   }
   return stored;
 }
