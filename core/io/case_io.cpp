@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <tuple>
 
 #include "core/io/case_parser.h"
 #include "wrc/case.h"
@@ -230,6 +231,25 @@ constexpr double kMinFriction = 1e-6;
 constexpr double kMaxFriction = 10.0;
 // Prescribed forces: at least 1e-6 N; below that the patch is far smaller than any element.
 constexpr double kMinForce = 1e-6;
+// Track and wheelset dimensions, mm: gauges and flange-back distances from 300 mm (the
+// smallest ride-on railways) to 3000 mm (twice the broadest gauge), wheel radii from 10 mm
+// (scaled test rigs) to 2000 mm (four times a locomotive's).
+constexpr double kMinTrackDimension = 300.0, kMaxTrackDimension = 3000.0;
+constexpr double kMinWheelRadius = 10.0, kMaxWheelRadius = 2000.0;
+// The wheelset's vertical position, mm: contact happens within a few mm of the first touch;
+// 1000 mm is farther than any profile is tall.
+constexpr double kMaxVerticalPosition = 1000.0;
+// The lever that turns the yaw rate into longitudinal creepage: half a wide gauge, mm.
+constexpr double kYawRateLever = 1000.0;
+
+// lo <= value <= hi; `why` says in the user's terms what is meant.
+void RequireWithin(const Section& section, std::string_view key, double value, double lo, double hi,
+                   const std::string& why) {
+  if (!(value >= lo && value <= hi)) {
+    section.Fail(
+        key, "must be between " + FormatNumber(lo) + " and " + FormatNumber(hi) + " (" + why + ")");
+  }
+}
 
 void RequireElementSize(const Section& section, std::string_view key, double value) {
   RequirePositive(section, key, value);
@@ -317,7 +337,10 @@ ProfileSource ReadProfileSource(const Section& section, ProfileKind kind,
   if (check_file) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(profile.path, error)) {
-      section.Fail("profile", "file not found: " + profile.path.string());
+      const bool exists = std::filesystem::exists(profile.path, error);
+      section.Fail("profile", (exists ? "not a regular file (a directory, device or FIFO): "
+                                      : "file not found: ") +
+                                  profile.path.string());
     }
     CheckProfileContents(section, profile, kind);
   }
@@ -350,12 +373,15 @@ Track ReadTrack(const Section& section) {
       }
     }
     track.gauge_width = section.Number("gauge_width", track.gauge_width);
-    RequirePositive(section, "gauge_width", track.gauge_width);
+    RequireWithin(section, "gauge_width", track.gauge_width, kMinTrackDimension, kMaxTrackDimension,
+                  "mm; standard gauge is 1435");
   }
   return track;
 }
 
-Wheelset ReadWheelset(const Section& section) {
+// With absolute placement the wheel sits in the profiles' own coordinates and the flange-back
+// distance may be anything, 0 included; placed by gauge it sets where the wheel is.
+Wheelset ReadWheelset(const Section& section, const Track& track) {
   Wheelset wheelset;
   wheelset.side = section.Choice("side", {{"right", WheelSide::kRight}, {"left", WheelSide::kLeft}},
                                  wheelset.side);
@@ -363,8 +389,16 @@ Wheelset ReadWheelset(const Section& section) {
       section.Number("flange_back_distance", wheelset.flange_back_distance);
   wheelset.flange_back_position =
       section.Number("flange_back_position", wheelset.flange_back_position);
+  if (track.absolute_placement()) {
+    RequireMagnitudeAtMost(section, "flange_back_distance", wheelset.flange_back_distance,
+                           kMaxTrackDimension, "mm");
+  } else {
+    RequireWithin(section, "flange_back_distance", wheelset.flange_back_distance,
+                  kMinTrackDimension, kMaxTrackDimension, "mm; 1360 on standard gauge");
+  }
   wheelset.nominal_radius = section.Number("nominal_radius", wheelset.nominal_radius);
-  RequirePositive(section, "nominal_radius", wheelset.nominal_radius);
+  RequireWithin(section, "nominal_radius", wheelset.nominal_radius, kMinWheelRadius,
+                kMaxWheelRadius, "mm; 460 for a 920 mm wheel");
   return wheelset;
 }
 
@@ -535,12 +569,33 @@ HalfspaceGeometry ReadGeometry(const Section& section) {
   return geometry;
 }
 
+// The creepages the lateral, roll and yaw rates add (vy/V, vroll·r0/V, vyaw·lever/V) stay
+// within 100 % slip, as spin does; at rest (V = 0) any rate would be infinite slip.
+void RequireVelocityCreepages(const Section& section, const WheelsetState& state,
+                              const Wheelset& wheelset) {
+  const double speed = std::fabs(state.velocity);
+  const std::tuple<std::string_view, double, double, const char*> rates[] = {
+      {"vy", state.vy, 1.0, "mm/s; vy / velocity is a lateral creepage"},
+      {"vroll", state.vroll, wheelset.nominal_radius,
+       "rad/s; vroll·nominal_radius / velocity is a lateral creepage"},
+      {"vyaw", state.vyaw, kYawRateLever,
+       "rad/s; vyaw·1000 mm / velocity is a longitudinal creepage"}};
+  for (const auto& [key, rate, lever, why] : rates) {
+    if (rate == 0.0) continue;
+    RequireMagnitudeAtMost(section, key, rate, kMaxCreepage * speed / lever, why);
+  }
+}
+
 WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset,
                                 const CaseParseOptions& options) {
   // What [state] leaves out is 0 (free rolling: spin = 0); the velocity must be given.
   WheelsetState state;
   state.y = section.Number("y", state.y);
   state.z = section.OptionalNumber("z");
+  if (state.z) {
+    RequireMagnitudeAtMost(section, "z", *state.z, kMaxVerticalPosition,
+                           "mm, the wheelset's vertical position; contact is within a few mm");
+  }
   state.fz = section.OptionalNumber("fz");
   if (state.z && state.fz) section.Fail("fz", "give either state.z or state.fz, not both");
   const bool vertical_on_axis = options.axis_names.count("z") + options.axis_names.count("fz") > 0;
@@ -558,6 +613,7 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   state.vy = section.Number("vy", state.vy);
   state.vroll = section.Number("vroll", state.vroll);
   state.vyaw = section.Number("vyaw", state.vyaw);
+  RequireVelocityCreepages(section, state, wheelset);
 
   const std::optional<double> omega = section.OptionalNumber("omega");
   state.spin = section.OptionalNumber("spin");
@@ -566,7 +622,14 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
       options.axis_names.count("spin") + options.axis_names.count("omega") > 0;
   // Without omega or spin (and no axis for them) the wheelset rolls freely: spin = 0.
   if (!omega && !state.spin && !rotation_on_axis) state.spin = 0.0;
-  if (omega) state.omega = *omega;
+  if (omega) {
+    state.omega = *omega;
+    const double free_rolling = OmegaFromSpin(0.0, state.velocity, wheelset.nominal_radius);
+    if (state.velocity != 0.0 && !(std::fabs(state.omega / free_rolling - 1.0) <= kMaxCreepage)) {
+      section.Fail("omega", "must lie within 100 % of free rolling, -velocity / nominal_radius = " +
+                                FormatNumber(free_rolling) + " rad/s (omega is in rad/s)");
+    }
+  }
   if (state.spin) {
     RequireMagnitudeAtMost(section, "spin", *state.spin, kMaxCreepage,
                            "a relative creepage; 1 is 100 % slip");
@@ -633,7 +696,7 @@ Case ReadCase(const toml::table& root, const SourceFile& file,
     result.wheel = ReadProfileSource(Section(file, root, "wheel"), ProfileKind::kWheel, base_dir,
                                      options.check_files_exist);
     result.track = ReadTrack(Section(file, root, "track"));
-    result.wheelset = ReadWheelset(Section(file, root, "wheelset"));
+    result.wheelset = ReadWheelset(Section(file, root, "wheelset"), result.track);
     result.method = ReadMethod(Section(file, root, "method"));
     result.state = ReadWheelsetState(Section(file, root, "state"), result.wheelset, options);
   } else {

@@ -392,7 +392,7 @@ TEST(CaseIo, RejectsOutOfRangeValues) {
   ExpectCaseError(kHalfspaceCase, "y = [-3.0, 3.0]", "y = [1.0]", {"grid.y", "[min, max]"});
   ExpectCaseError(kHalfspaceCase, "a1 = 0.001", "a1 = 0", {"geometry.a1 = 0", "positive"});
   ExpectCaseError(kWheelRailCase, "nominal_radius = 460.0", "nominal_radius = -460",
-                  {"wheelset.nominal_radius = -460", "positive"});
+                  {"wheelset.nominal_radius = -460", "between 10 and 2000"});
   ExpectCaseError(kWheelRailCase, "fz = 10000.0", "fz = -5", {"state.fz = -5", "positive"});
   ExpectCaseError(kHalfspaceCase, "fn = 1000.0", "fn = 0", {"state.fn = 0", "positive"});
   ExpectCaseError(kWheelRailCase, "gauge_height = 14.0", "gauge_height = 14.0\nrail_y = 3.0",
@@ -592,24 +592,45 @@ TEST(CaseIo, LoadReportsBrokenProfilesAtTheirCaseKey) {
   fs::remove_all(dir);
 }
 
-TEST(CaseIo, RejectsSpinWhoseOmegaOverflows) {
-  // Found by tests/fuzz/fuzz_case: every value finite, yet omega = -(velocity / nominal_radius)
-  // · (1 + spin) overflowed to -inf and the case was accepted. At the largest accepted speed,
-  // 1e6 mm/s, a subnormal radius still overflows.
+TEST(CaseIo, RejectsRadiiWhoseOmegaWouldOverflow) {
+  // Found by fuzzing: every value finite, yet omega = -(velocity / nominal_radius)·(1 + spin)
+  // overflowed to -inf for a subnormal radius. The radius is now range-checked at its key.
   const std::string with_spin = Replace(Replace(kWheelRailCase, "omega = -4.35", "spin = 0.0"),
                                         "velocity = 2000.0", "velocity = 1e6");
   ExpectCaseError(with_spin, "nominal_radius = 460.0", "nominal_radius = 1e-310",
-                  {"state.spin = 0: ", "non-finite omega"}, "spin = 0.0");
-  // The same sizes with omega given directly leave nothing to overflow.
-  EXPECT_EQ(ErrorOf(Replace(Replace(kWheelRailCase, "velocity = 2000.0", "velocity = 1e6"),
-                            "nominal_radius = 460.0", "nominal_radius = 1e-310")),
-            "");
+                  {"wheelset.nominal_radius = 1e-310: ", "between 10 and 2000"});
+  ExpectCaseError(kWheelRailCase, "nominal_radius = 460.0", "nominal_radius = 1e-310",
+                  {"wheelset.nominal_radius = 1e-310: ", "between 10 and 2000"});
 }
 
 TEST(CaseIo, RejectsValuesOutsideTheirPlausibleRange) {
   ExpectCaseError(kWheelRailCase, "velocity = 2000.0", "velocity = 1e200",
                   {"state.velocity = 1e+200: ", "within ±1e+06"});
   ExpectCaseError(kWheelRailCase, "dx = 0.2", "dx = 1e6", {"grid.dx = 1e+06: ", "between"});
+  // Absurd dimensions and rates are named at their key, not where the geometry or the
+  // tangential solver later fails on them.
+  ExpectCaseError(kWheelRailCase, "nominal_radius = 460.0", "nominal_radius = 1e308",
+                  {"wheelset.nominal_radius = 1e+308: ", "between 10 and 2000"});
+  ExpectCaseError(kWheelRailCase, "omega = -4.35", "omega = 1e308",
+                  {"state.omega = 1e+308: ", "within 100 % of free rolling"});
+  // A locked wheel (omega = 0, 100 % slip) is a real braking case: accepted.
+  EXPECT_EQ(ErrorOf(Replace(kWheelRailCase, "omega = -4.35", "omega = 0.0")), "");
+  ExpectCaseError(kWheelRailCase, "velocity = 2000.0", "velocity = 2000.0\nvyaw = 1e308",
+                  {"state.vyaw = 1e+308: ", "within ±2 "}, "vyaw = 1e308");
+  ExpectCaseError(kWheelRailCase, "velocity = 2000.0", "velocity = 2000.0\nvy = -3000.0",
+                  {"state.vy = -3000: ", "lateral creepage"}, "vy = -3000.0");
+  ExpectCaseError(kWheelRailCase, "velocity = 2000.0", "velocity = 2000.0\nvroll = 5.0",
+                  {"state.vroll = 5: ", "lateral creepage"}, "vroll = 5.0");
+  EXPECT_EQ(ErrorOf(Replace(kWheelRailCase, "velocity = 2000.0",
+                            "velocity = 2000.0\nvy = 20.0\nvroll = 0.01\nvyaw = 0.2")),
+            "");
+  ExpectCaseError(kWheelRailCase, "gauge_height = 14.0", "gauge_height = 14.0\ngauge_width = 1e308",
+                  {"track.gauge_width = 1e+308: ", "between 300 and 3000"}, "gauge_width = 1e308");
+  ExpectCaseError(kWheelRailCase, "side = \"right\"", "side = \"right\"\nflange_back_distance = 0",
+                  {"wheelset.flange_back_distance = 0: ", "between 300 and 3000"},
+                  "flange_back_distance = 0");
+  ExpectCaseError(kWheelRailCase, "fz = 10000.0", "z = 1e308",
+                  {"state.z = 1e+308: ", "within ±1000"});
 }
 
 }  // namespace
