@@ -544,7 +544,7 @@ GenerateSummary GenerateGrid(const Scene& scene, const GenerateOptions& options,
 }  // namespace gen
 
 GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options) {
-  if (options.output.empty()) throw InputError("wrc generate: no output file given");
+  if (options.output.empty()) throw InputError("no output file given");
   RequireRegularOutput(options.output);  // before any solving, not after it
   RequireNotAnInput(options.output, {scene.base.rail.path, scene.base.wheel.path});
   std::unique_ptr<Cluster> cluster;

@@ -143,14 +143,29 @@ std::vector<double> ReadRangeValues(const SourceFile& file, const toml::table& r
       file.Fail(step_node, path + ".step",
                 "gives more than " + std::to_string(kMaxValuesPerAxis) + " values");
     }
+    // A step beyond the range would leave only `from`, silently dropping `to`.
+    if (to > from && intervals + kStepEndTolerance < 1.0) {
+      file.Fail(step_node, path + ".step",
+                "is larger than to - from = " + FormatNumber(to - from) +
+                    ": the range would hold only its start; use a smaller step or count = 2");
+    }
     const auto last = static_cast<std::size_t>(std::floor(intervals + kStepEndTolerance));
     for (std::size_t i = 0; i <= last; ++i) values.push_back(from + static_cast<double>(i) * step);
     // `to` on the grid: store it exactly as written rather than with rounding noise.
     if (std::abs(intervals - static_cast<double>(last)) <= kStepEndTolerance) values.back() = to;
   } else {
+    // A whole number written as a float (count = 3.0) is the count the user means.
     const auto* count_integer = count_node->as_integer();
-    if (count_integer == nullptr) file.Fail(count_node, path + ".count", "must be an integer");
-    const std::int64_t count = count_integer->get();
+    const auto* count_float = count_node->as_floating_point();
+    const bool whole = count_float != nullptr && std::isfinite(count_float->get()) &&
+                       count_float->get() == std::floor(count_float->get()) &&
+                       std::abs(count_float->get()) <= 1e15;
+    if (count_integer == nullptr && !whole) {
+      file.Fail(count_node, path + ".count", "must be a whole number");
+    }
+    const std::int64_t count = count_integer != nullptr
+                                   ? count_integer->get()
+                                   : static_cast<std::int64_t>(count_float->get());
     if (count < 1) file.Fail(count_node, path + ".count", "must be at least 1");
     if (count > static_cast<std::int64_t>(kMaxValuesPerAxis)) {
       file.Fail(count_node, path + ".count",

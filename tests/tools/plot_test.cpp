@@ -254,6 +254,8 @@ TEST_F(Plot, TableMapOverTwoAxes) {
       << Err();
   EXPECT_EQ(Run("plot table tiny.h5 --output fy --x y --at yaw=1"), 2);
   EXPECT_NE(Err().find("--at yaw=1: outside the table's"), std::string::npos) << Err();
+  EXPECT_EQ(Run("plot table tiny.h5 --output fy --x y --at yaw=0.001,yaw=0.002"), 2);
+  EXPECT_NE(Err().find("axis yaw is given twice"), std::string::npos) << Err();
 }
 
 TEST_F(Plot, BadInputIsNamed) {

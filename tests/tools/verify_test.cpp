@@ -88,6 +88,14 @@ TEST(Verify, ErrorsShrinkWhenTheTableIsRefined) {
               2)
         << tolerance;
   }
+  // A seed CLI11 would wrap (-1) or saturate (2^64) would verify at other points than asked.
+  for (const char* seed : {"-1", "18446744073709551616"}) {
+    EXPECT_EQ(RunCommand(Wrc() + " verify '" + (dir / "table_0.h5").string() +
+                             "' --samples 2 --seed=" + seed,
+                         &out),
+              2)
+        << seed;
+  }
 }
 
 // fz prescribed in [state] and stored varies only by the vertical-force iteration's tolerance

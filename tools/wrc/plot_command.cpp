@@ -98,7 +98,9 @@ std::map<std::string, double> ParseAt(const std::vector<std::string>& items) {
         !std::isfinite(value)) {
       throw InputError("--at " + item + ": give axis=value, e.g. --at yaw=0.002");
     }
-    at[item.substr(0, eq)] = value;
+    if (!at.emplace(item.substr(0, eq), value).second) {
+      throw InputError("--at " + item + ": axis " + item.substr(0, eq) + " is given twice");
+    }
   }
   return at;
 }

@@ -3,6 +3,7 @@
 // (--csv, an error map through the worst point with --map), and gates on a tolerance.
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -330,6 +331,18 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--seed", opt->verify.seed, "Random seed (fixed: results are repeatable)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            // CLI11 would wrap -1 and saturate 2^64 to 2^64 - 1: another seed than written.
+            errno = 0;
+            char* end = nullptr;
+            const bool digits =
+                !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+            std::strtoull(text.c_str(), &end, 10);
+            return digits && errno != ERANGE ? std::string()
+                                             : "must be a whole number 0 … 2^64 - 1, is " + text;
+          },
+          "SEED"))
       ->capture_default_str();
   cmd->add_option("--sampler", opt->verify.sampler, "uniform or lhs (Latin hypercube)")
       ->check(CLI::IsMember({"uniform", "lhs"}))

@@ -113,6 +113,10 @@ TEST(SceneIo, SpecExampleAxes) {
   EXPECT_NEAR(scene.axes[3].values[4], 0.0, 1e-18);
   EXPECT_EQ(scene.Shape(), (std::vector<std::size_t>{41, 3, 5, 9}));
   EXPECT_EQ(scene.PointCount(), 41u * 3u * 5u * 9u);
+  // count written as a whole float is the same count.
+  std::string float_count = text;
+  float_count.replace(float_count.find("count = 5}"), 10, "count = 5.0}");
+  ExpectValues(Parse(float_count).axes[2].values, {-0.01, -0.005, 0.0, 0.005, 0.01});
   EXPECT_EQ(scene.outputs, (std::vector<std::string>{"fx", "fy", "fz", "mx", "my", "mz"}));
   EXPECT_EQ(scene.base.source_text, text);
   EXPECT_EQ(scene.base.source_name, "scene.toml");
@@ -251,7 +255,9 @@ TEST(SceneIo, RejectsBadRanges) {
   ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1.0, count = 0}\n"),
                    "y =", {"table.y.count = 0", "at least 1"});
   ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1.0, count = 2.5}\n"),
-                   "y =", {"table.y.count = 2.5", "integer"});
+                   "y =", {"table.y.count = 2.5", "whole number"});
+  ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1.0, step = 5.0}\n"),
+                   "y =", {"table.y.step = 5", "only its start"});
   ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1.0, count = 1}\n"),
                    "y =", {"table.y.count = 1", "from = to"});
   ExpectSceneError(SceneWith(axes + "y = {from = 0.0, to = 1.0}\n"),
