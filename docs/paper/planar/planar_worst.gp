@@ -1,6 +1,6 @@
 set terminal pngcairo size 1300,480 font ',10'
 set output 'planar_worst.png'
-set multiplot layout 1,3 title 'whl\_left\_iter288 on rail\_left\_iter288, y = 4 mm, yaw = 0.004 rad: the case with the largest L/V difference (paper Fig. 19)'
+set multiplot layout 1,3 title 'whl\_left\_iter288 on avg\_low2, y = 3 mm, yaw = 0 rad: the case with the largest L/V difference (paper Fig. 19)'
 set xlabel 'lateral position y, track frame, mm'
 set ylabel 'line load, N/mm'
 set grid
