@@ -29,7 +29,12 @@ constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 // A table shared by Python objects (wheelsets keep theirs alive). The mutex lets evaluations
 // run concurrently from Python threads while a mode switch waits for them.
 struct PyTable {
-  explicit PyTable(const std::string& path) : table(path) {}
+  explicit PyTable(const std::string& path) : table(CheckedPath(path)) {}
+  // A Python string may hold NUL, which would end the C path early and open another file.
+  static const std::string& CheckedPath(const std::string& path) {
+    if (path.find('\0') != std::string::npos) throw py::value_error("path: contains a NUL byte");
+    return path;
+  }
   wrc::Table table;
   mutable std::shared_mutex mode_mutex;
 };
@@ -47,9 +52,22 @@ py::ssize_t NodeCount(const wrc::Table& t) {
 }
 
 // points as (N, n_axes); a single point (n_axes,) counts as N = 1.
+// Real numbers only: forcecast would turn None into NaN and drop an imaginary part silently.
+Doubles RealArray(const py::handle& value, const std::string& what) {
+  const py::array raw = py::array::ensure(value);
+  if (!raw) throw py::type_error(what + ": expected an array of numbers");
+  const char kind = raw.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+    throw py::type_error(what + ": expected real numbers, got an array of dtype " +
+                         std::string(py::str(raw.dtype())));
+  }
+  Doubles a = Doubles::ensure(raw);
+  if (!a) throw py::type_error(what + ": expected an array of numbers");
+  return a;
+}
+
 Doubles PointsArray(const wrc::Table& t, const py::handle& points) {
-  Doubles a = Doubles::ensure(points);
-  if (!a) throw py::type_error("points: expected an array of numbers");
+  Doubles a = RealArray(points, "points");
   const py::ssize_t n_axes = t.num_axes();
   if (a.ndim() == 1 && a.shape(0) == n_axes) return a.reshape({py::ssize_t{1}, n_axes});
   if (a.ndim() != 2 || a.shape(1) != n_axes) {
@@ -107,11 +125,19 @@ void RaiseOnError(const Ints& flags) {
   }
 }
 
+// The arrays handed out are copies of the table's data: read-only, so that a write fails
+// instead of seeming to change the table.
+template <typename Array>
+Array ReadOnly(Array array) {
+  array.attr("setflags")(false);
+  return array;
+}
+
 py::dict AxesDict(const wrc::Table& t) {
   py::dict axes;
   for (int a = 0; a < t.num_axes(); ++a) {
     const double* values = wrc_table_axis_values(t.get(), a);
-    axes[py::str(t.axis_name(a))] = Doubles(t.axis_size(a), values);
+    axes[py::str(t.axis_name(a))] = ReadOnly(Doubles(t.axis_size(a), values));
   }
   return axes;
 }
@@ -128,7 +154,9 @@ Doubles OutputGrid(const wrc::Table& t, int k) {
 
 py::dict OutputsDict(const wrc::Table& t) {
   py::dict outputs;
-  for (int k = 0; k < t.num_outputs(); ++k) outputs[py::str(t.output_name(k))] = OutputGrid(t, k);
+  for (int k = 0; k < t.num_outputs(); ++k) {
+    outputs[py::str(t.output_name(k))] = ReadOnly(OutputGrid(t, k));
+  }
   return outputs;
 }
 
@@ -136,7 +164,7 @@ py::array_t<std::int8_t> StatusGrid(const wrc::Table& t) {
   py::array_t<std::int8_t> grid(AxisShape(t));
   std::memcpy(grid.mutable_data(), wrc_table_node_status(t.get()),
               static_cast<std::size_t>(NodeCount(t)));
-  return grid;
+  return ReadOnly(grid);
 }
 
 void SetInterpolation(PyTable& self, const std::string& mode) {
@@ -199,8 +227,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
     }
     py::object value = kwargs.contains(name) ? py::reinterpret_borrow<py::object>(kwargs[name])
                                              : py::float_(unknown ? kNan : 0.0);
-    columns.push_back({Doubles::ensure(value)});
-    if (!columns.back().values) throw py::type_error(std::string("Wheelset.eval: ") + name);
+    columns.push_back({RealArray(value, std::string("Wheelset.eval: ") + name)});
   }
   for (const auto& item : kwargs) {
     const std::string key = py::str(item.first);

@@ -128,6 +128,22 @@ class PythonModuleTest(unittest.TestCase):
         self.assertFalse(t.status.any())
         self.assertIn("velocity = 20000.0", t.attribute("scene"))
 
+    def test_what_is_not_a_real_number_or_path_is_refused(self):
+        # None would become NaN and 1j lose its imaginary part under a silent cast
+        for bad in ([None, 0.0, 0.0, 0.0], [1j, 0.0, 0.0, 0.0], ["a", "b", "c", "d"]):
+            with self.assertRaises(TypeError):
+                self.table.eval(bad)
+        ws = wrc.Wheelset(left=self.table, right=self.table)
+        with self.assertRaises(TypeError):
+            ws.eval(y=None, omega=-V0 / RADIUS, velocity=V0)
+        # a NUL would end the C path early and open another file
+        with self.assertRaises(ValueError):
+            wrc.Table(self.wheelset_path + "\0ignored")
+        # the grids handed out are copies: writing to them must fail, not seem to work
+        for grid in (self.table.outputs["fy"], self.table.axes["y"], self.table.status):
+            with self.assertRaises(ValueError):
+                grid.flat[0] = 1
+
     def test_closed_form_value(self):
         small = wrc.Table(self.small_path)
         values = small.eval([0.5, 0.005])
