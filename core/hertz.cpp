@@ -5,13 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/common/numbers.h"
 #include "core/gsl/elliptic.h"
 #include "core/gsl/roots.h"
 
 namespace wrc {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void RequirePositiveFinite(double value, const char* name) {
   if (!(std::isfinite(value) && value > 0.0)) {

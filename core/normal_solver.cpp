@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/common/portable_simd.h"
+
 namespace wrc {
 namespace {
 
@@ -210,9 +212,7 @@ void CoarseResponse(const ContactBlocks& b, const std::vector<double>& prefix, i
 // run's k < source_count, where `kernel` points at the coefficient row between the two runs'
 // grid rows and offset 0 of that row: the response of one run of the contact set to another.
 // Built for AVX2 as well as the baseline ISA like the grid passes (no FMA in either).
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void AddRunResponse(const double* kernel, const double* __restrict d, int source_lo,
                     int source_count, int target_lo, int target_count, double* __restrict out) {
   const double* base = kernel + (target_lo - source_lo);  // base[t − k] = K(...)
@@ -494,12 +494,10 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
 
 // The grid passes built for AVX2 as well as the baseline ISA, chosen at load time (no FMA in
 // either, so both give the same results).
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-NormalSummary
-SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h, const NormalLoad& load,
-            const NormalOptions& options, NormalWorkspace& ws, NormalSolution& sol) {
+WRC_CLONE_FOR_AVX2
+NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
+                          const NormalLoad& load, const NormalOptions& options, NormalWorkspace& ws,
+                          NormalSolution& sol) {
   Validate(op, h, load);
   const std::size_t n = h.size();
   const double area = op.grid().element_area();

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/common/portable_simd.h"
+
 namespace wrc {
 namespace {
 
@@ -82,14 +84,11 @@ LocalResult SolveLocal(double sfx, double sfy, double kx, double ky, double boun
 // The slip change along one row caused by a traction-difference update: the solver's inner
 // loop (O(contact) per element update, most of a steady-rolling solve). Built for AVX2 as well
 // as the baseline x86-64 ISA, and chosen at load time, so the binary stays portable.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void AddRowSlipChange(const double* __restrict xx0, const double* __restrict xx1,
                       const double* __restrict yy0, const double* __restrict yy1,
                       const double* __restrict xy0, const double* __restrict xy1, double ax,
-                      double ay, int count, double* __restrict sx_row,
-                      double* __restrict sy_row) {
+                      double ay, int count, double* __restrict sx_row, double* __restrict sy_row) {
   for (int t = 0; t < count; ++t) {
     const double cxx = xx0[t] - xx1[t], cyy = yy0[t] - yy1[t], cxy = xy0[t] - xy1[t];
     sx_row[t] += cxx * ax + cxy * ay;
@@ -101,9 +100,7 @@ void AddRowSlipChange(const double* __restrict xx0, const double* __restrict xx1
 // s[t] += Σ_u [[xx, xy], [xy, yy]](offset_u + t)·(ax_u, ay_u), with xx, yy, xy pointing at the
 // coefficients of the rows' offset dj. One call per pair of rows instead of one per update and
 // row: heavy-haul rows are ~15 elements long, and the calls cost as much as the arithmetic.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void AddRowSlipTerms(const double* __restrict xx, const double* __restrict yy,
                      const double* __restrict xy, const int* __restrict offsets,
                      const double* __restrict ax, const double* __restrict ay, int updates,

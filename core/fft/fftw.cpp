@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/common/portable_simd.h"
+
 namespace wrc::fftw {
 namespace {
 // FFTW's planner is not thread-safe (only fftw_execute* is): serialise plan creation and
@@ -76,9 +78,7 @@ PaddedPlan2d::~PaddedPlan2d() {
 }
 
 // The row loops around the FFTW calls built for AVX2 as well as the baseline ISA.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double>* spectrum,
                            std::complex<double>* rows, Staging& staging) const {
   using Complex = std::complex<double>;
@@ -134,9 +134,7 @@ void PaddedPlan2d::Forward(const double* in, int ny, int nx, std::complex<double
 }
 
 // The row loops around the FFTW calls built for AVX2 as well as the baseline ISA.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void PaddedPlan2d::Backward(std::complex<double>* spectrum, int ny, int nx, double* out,
                             std::complex<double>* rows) const {
   using Complex = std::complex<double>;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "core/common/portable_simd.h"
 #include "core/fft/fftw.h"
 
 namespace wrc {
@@ -31,9 +32,7 @@ namespace {
 // and does not vectorise; spectra here are finite.
 // Built for AVX2 as well as the baseline x86-64 ISA, chosen at load time (as the tangential
 // solver's inner loops): one product per transform pair, over the whole padded spectrum.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void MultiplyInPlace(const std::vector<std::complex<double>>& k, std::complex<double>* s) {
   const double* a = reinterpret_cast<const double*>(k.data());
   double* b = reinterpret_cast<double*>(s);
@@ -45,9 +44,7 @@ void MultiplyInPlace(const std::vector<std::complex<double>>& k, std::complex<do
 }
 
 // out = k1·s1 + k2·s2, element by element.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+WRC_CLONE_FOR_AVX2
 void MultiplyAdd(const std::complex<double>* k1, const std::complex<double>* s1,
                  const std::complex<double>* k2, const std::complex<double>* s2,
                  std::complex<double>* out, std::size_t n) {

@@ -5,13 +5,12 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/common/numbers.h"
 #include "core/geometry/profile_internal.h"
 #include "wrc/profile.h"
 
 namespace wrc::profile_detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// |δα_i|: the angle between segment (i−1, i) and segment (i, i+1), in [0, π].
 double AbsoluteTurn(const std::vector<double>& y, const std::vector<double>& z, std::size_t i) {

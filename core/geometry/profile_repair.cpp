@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/common/numbers.h"
 #include "core/geometry/profile_internal.h"
 #include "wrc/errors.h"
 #include "wrc/profile.h"
@@ -16,8 +17,6 @@ namespace wrc {
 namespace {
 
 using profile_detail::At;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Side-face detection for MirrorZ::kAuto. The end face is the chord over the last 2 mm of arc
 // length: long enough to average the noise of a few measured points (MiniProf spacing is
