@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/table_layout.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
 
@@ -49,7 +50,8 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   if (file.HasAttribute("warnings_count")) {
     info.warnings_count = file.ReadIntAttribute("warnings_count");
   }
-  for (const std::string& name : file.AttributeNames()) {
+  for (const std::string& name :
+       h5::RootAttributeNamesToRead(file, runtime::TableRootAttributeNames())) {
     if (name == "format") continue;
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString) {

@@ -11,6 +11,7 @@
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/kernels.h"
 #include "runtime/table.h"
+#include "runtime/table_layout.h"
 
 namespace wrc::runtime {
 namespace {
@@ -261,7 +262,7 @@ Table Table::Load(const std::string& path) {
 
   Table table;
   table.path_ = path;
-  for (const std::string& name : file.AttributeNames()) {
+  for (const std::string& name : h5::RootAttributeNamesToRead(file, TableRootAttributeNames())) {
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString &&
         attribute.Space().NumElements() == 1) {

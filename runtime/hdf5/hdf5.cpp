@@ -883,6 +883,22 @@ File File::Create(const std::string& path, bool overwrite, FileFormat format) {
 
 void File::Flush() { Check(H5Fflush(id(), H5F_SCOPE_GLOBAL), Where(), "cannot flush"); }
 
+std::vector<std::string> RootAttributeNamesToRead(const File& file,
+                                                  const std::vector<std::string>& expected) {
+  if (file.Format() == FileFormat::kChecksummed) return file.AttributeNames();
+  std::vector<std::string> present;
+  for (const std::string& name : expected) {
+    if (file.HasAttribute(name)) present.push_back(name);
+  }
+  return present;
+}
+
+FileFormat File::Format() const {
+  H5F_info2_t info{};
+  Check(H5Fget_info2(id(), &info), Where(), "cannot read the file's superblock information");
+  return info.super.version >= 2 ? FileFormat::kChecksummed : FileFormat::kEarliest;
+}
+
 }  // namespace wrc::h5
 
 // ---------------------------------------------------------------------------------------------

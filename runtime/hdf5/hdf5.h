@@ -396,8 +396,19 @@ class File : public Group {
   /// Writes buffered data to disk.
   void Flush();
 
+  /// The format the file is in: kChecksummed for superblock version 2 or later (whose metadata
+  /// carries checksums), else kEarliest.
+  FileFormat Format() const;
+
  private:
   File(Handle handle, std::string file) : Group(std::move(handle), std::move(file), "/") {}
 };
+
+/// The names of the root attributes to read: all of them where the file's metadata carries
+/// checksums; in the earliest format only those of `expected` that exist, looked up by name.
+/// HDF5 1.10 iterating the attribute messages of a damaged, unchecksummed object header can
+/// read freed memory and crash (found by fuzzing); a lookup by name takes another path.
+std::vector<std::string> RootAttributeNamesToRead(const File& file,
+                                                  const std::vector<std::string>& expected);
 
 }  // namespace wrc::h5
