@@ -90,16 +90,21 @@ int PatchFloatSizes(std::vector<char>* bytes) {
 }
 
 // Damaged earliest-format files found by fuzzing that crashed inside HDF5 1.10: iterating the
-// root's attribute messages read freed memory (SIGSEGV without sanitizers), and a header size
-// asked HDF5 for 2 PB. Both are now errors; the files are in the fuzz corpus.
+// root's attribute messages read freed memory (SIGSEGV without sanitizers), a header size asked
+// HDF5 for 2 PB, and a damaged compact axis made HDF5 read past its buffer (the garbage is then
+// refused by the axis checks). All are errors (tests/runtime/damaged/).
 TEST(RuntimeDamage, FilesThatCrashedHdf5AreErrors) {
-  const std::string corpus = std::string(WRC_SOURCE_DIR) + "/tests/fuzz/corpus/fuzz_table/";
-  for (const char* name : {"crash_hdf5_attribute_iteration.h5", "crash_hdf5_huge_allocation.h5"}) {
+  const std::string dir = std::string(WRC_SOURCE_DIR) + "/tests/runtime/damaged/";
+  for (const char* name :
+       {"hdf5_attribute_iteration.h5", "hdf5_huge_allocation.h5", "hdf5_compact_overread.h5"}) {
+    ASSERT_TRUE(std::ifstream(dir + name).good()) << dir + name << " is missing";
     wrc_table* table = nullptr;
-    const int code = wrc_table_open((corpus + name).c_str(), &table);
+    const int code = wrc_table_open((dir + name).c_str(), &table);
     EXPECT_TRUE(code == WRC_ERR_FILE || code == WRC_ERR_FORMAT) << name << ": " << code;
     EXPECT_EQ(table, nullptr);
     EXPECT_NE(std::string(wrc_last_error()).find(name), std::string::npos) << wrc_last_error();
+    EXPECT_EQ(std::string(wrc_last_error()).find("no such file"), std::string::npos)
+        << wrc_last_error();
   }
 }
 
