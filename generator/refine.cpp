@@ -30,7 +30,7 @@
 #include "generator/refine.h"
 #include "generator/sweep.h"
 #include "wrc/errors.h"
-#include "wrc/runtime.h"
+#include "wrc/scene.h"
 
 namespace wrc::gen {
 namespace {
@@ -260,12 +260,11 @@ double MinStep(const RefineSettings& settings, const SceneAxis& axis) {
 bool Splittable(const RefineSettings& settings, const SceneAxis& axis, std::size_t interval) {
   const double a = axis.values[interval];
   const double b = axis.values[interval + 1];
-  const double width = b - a;
-  // Both halves must also stay within the runtime's axis limits (wrc/runtime.h), whatever
-  // min_step says, or the table could not be opened.
-  const double least_half =
-      std::max(WRC_AXIS_MIN_STEP, WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b)));
-  return width >= 2.0 * std::max(MinStep(settings, axis), least_half);
+  // Both halves must also stay within the runtime's axis limits, whatever min_step says, or
+  // the table could not be opened.
+  const double middle = 0.5 * (a + b);
+  return b - a >= 2.0 * MinStep(settings, axis) && AxisStepIsResolvable(a, middle) &&
+         AxisStepIsResolvable(middle, b);
 }
 
 }  // namespace

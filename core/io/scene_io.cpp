@@ -55,14 +55,6 @@ std::string AxisValueProblem(std::string_view name, double value) {
   return {};
 }
 
-/// Whether neighbouring axis values are far enough apart for the runtime to interpolate
-/// between them (the limits in wrc/runtime.h).
-bool StepIsResolvable(double a, double b) {
-  const double step = b - a;
-  return step >= WRC_AXIS_MIN_STEP &&
-         step >= WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b));
-}
-
 /// The [state] / [friction] keys that an axis replaces; giving both is ambiguous.
 std::vector<std::pair<std::string_view, std::string_view>> KeysReplacedByAxis(
     std::string_view axis) {
@@ -88,7 +80,7 @@ std::vector<double> ReadExplicitValues(const SourceFile& file, const toml::array
                 "axis values must be strictly ascending (previous value " +
                     DescribeValue(*array.get(i - 1)) + ")");
     }
-    if (!values.empty() && !StepIsResolvable(values.back(), value)) {
+    if (!values.empty() && !AxisStepIsResolvable(values.back(), value)) {
       file.Fail(&element, element_path,
                 "is too close to the previous value " + DescribeValue(*array.get(i - 1)) +
                     " for a table axis (steps of at least 1e-30 and 1e-9 of the values)");
@@ -186,7 +178,7 @@ std::vector<double> ReadRangeValues(const SourceFile& file, const toml::table& r
   }
   // Rounding could, in principle, make two neighbours equal for a tiny step on large values.
   for (std::size_t i = 1; i < values.size(); ++i) {
-    if (!(values[i] > values[i - 1]) || !StepIsResolvable(values[i - 1], values[i])) {
+    if (!(values[i] > values[i - 1]) || !AxisStepIsResolvable(values[i - 1], values[i])) {
       file.FailAt(range.source().begin, path, "step is too small to give distinct values");
     }
   }
@@ -573,6 +565,12 @@ std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed) {
       "fx", "fy", "fz", "mx", "my", "mz", "n_patches", "contact_y", "contact_angle", "pmax"};
   if (fz_prescribed) outputs.push_back("z");
   return outputs;
+}
+
+bool AxisStepIsResolvable(double a, double b) {
+  const double step = b - a;
+  return step >= WRC_AXIS_MIN_STEP &&
+         step >= WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b));
 }
 
 std::string_view SceneQuantityUnit(std::string_view name) {

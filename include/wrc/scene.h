@@ -97,6 +97,10 @@ bool IsForceOutput(std::string_view name);
 /// contact_angle pmax, plus z when fz is prescribed (fz is in the list anyway).
 std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);
 
+/// Whether neighbouring table-axis values a < b are far enough apart for the runtime to
+/// interpolate between them (the WRC_AXIS_* limits of wrc/runtime.h).
+bool AxisStepIsResolvable(double a, double b);
+
 /// Unit of an axis or output quantity, as stored in the table ("mm", "N", "rad", "N*mm",
 /// "N/mm^2", "rad/s", "mm/s", "-"). Empty for an unknown name.
 std::string_view SceneQuantityUnit(std::string_view name);

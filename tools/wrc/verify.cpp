@@ -200,7 +200,7 @@ double Max(const std::vector<double>& values) {
 json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 // The statistics of one output in one interpolation mode.
-json OutputReport(const Verification& v, std::size_t o, bool cubic, const ErrorScale& range) {
+json OutputReport(const Verification& v, std::size_t o, bool cubic, const ErrorScale& scale) {
   std::vector<double> abs, rel_load, same_abs, same_load, change_abs, change_load;
   std::size_t worst = 0;
   double worst_error = -1.0;
@@ -232,10 +232,10 @@ json OutputReport(const Verification& v, std::size_t o, bool cubic, const ErrorS
                  {"rms", Number(Rms(abs))},
                  {"p95_abs", Number(Percentile(abs, 0.95))},
                  {"max_rel", abs.empty()         ? json(nullptr)
-                             : range.scale > 0.0 ? json(Max(abs) / range.scale)
+                             : scale.scale > 0.0 ? json(Max(abs) / scale.scale)
                                                  : json(0.0)},
-                 {"range", range.range},
-                 {"scale", range.scale},
+                 {"range", scale.range},
+                 {"scale", scale.scale},
                  {"compared", abs.size()},
                  {"worst", worst_point}};
   if (force) {
@@ -369,10 +369,10 @@ Verification VerifyTable(const VerifyOptions& opt) {
   const h5::File file = h5::File::Open(opt.table);
   const h5::Group outputs_group = file.OpenGroup("outputs");
   std::vector<std::vector<double>> values(n_out);
-  std::vector<ErrorScale> range(n_out);
+  std::vector<ErrorScale> scales(n_out);
   for (std::size_t o = 0; o < n_out; ++o) {
     values[o] = outputs_group.OpenDataset(v.output_names[o]).Read<double>();
-    range[o] = ErrorScaleOf(values[o]);
+    scales[o] = ErrorScaleOf(values[o]);
   }
   const auto patches_output = std::find(v.output_names.begin(), v.output_names.end(), "n_patches");
   const std::vector<std::vector<double>> points =
@@ -443,7 +443,7 @@ Verification VerifyTable(const VerifyOptions& opt) {
     }
     json outputs = json::object();
     for (std::size_t o = 0; o < n_out; ++o) {
-      outputs[v.output_names[o]] = OutputReport(v, o, cubic, range[o]);
+      outputs[v.output_names[o]] = OutputReport(v, o, cubic, scales[o]);
     }
     const std::string key = cubic ? "cubic" : "linear";
     result["interpolation"][key] = {{"outputs", outputs},
