@@ -335,10 +335,9 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
           [](std::string& text) {
             // CLI11 would wrap -1 and saturate 2^64 to 2^64 - 1: another seed than written.
             errno = 0;
-            char* end = nullptr;
             const bool digits =
                 !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-            std::strtoull(text.c_str(), &end, 10);
+            std::strtoull(text.c_str(), nullptr, 10);
             return digits && errno != ERANGE ? std::string()
                                              : "must be a whole number 0 … 2^64 - 1, is " + text;
           },
