@@ -490,339 +490,468 @@ DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
   return outcome;
 }
 
+// ---- the active-set iteration (Polonsky & Keer 1999), in named steps -------------------------
+//
+// Its grid passes are a third of an iteration on a large box. They are inlined into the cloned
+// SolveNormal, so that each of its variants compiles them for its own instruction set.
+#define WRC_GRID_PASS inline __attribute__((always_inline))
+
+// The displacement u = A·p is carried from one iteration to the next: a step changes the
+// pressure by −τ·d, plus a correction at the few elements it clipped to zero or re-activated,
+// so u ← s·(u − τ·A·d + A·c) with the response A·d already at hand and A·c summed directly
+// from the influence coefficients (one column per corrected element). That saves one of the
+// two FFT products per iteration, also while the contact area still changes. With more than
+// kMaxDirectColumns corrections the FFT is cheaper, and u is recomputed. It is recomputed at
+// least every kRefreshIterations anyway, so that round-off cannot accumulate: each carried
+// update adds ~1e-16 of u, so 64 of them stay near 1e-14, six orders below the tolerance
+// (measured: the heavy-haul forces move by 5e-16 of the load against a refresh every 16).
+constexpr int kRefreshIterations = 64;
+
+// What every step reads: the problem and the parts of it that do not change.
+struct ActiveSetProblem {
+  const FftInfluenceOperator& op;
+  const std::vector<double>& h;
+  const NormalLoad& load;
+  const InfluenceCoefficients& columns;
+  const LocalInverseStencil* stencil;  ///< nullptr: not preconditioned
+  std::size_t n;
+  double area;
+  bool force_control;
+};
+
+// What the iteration carries from one step to the next.
+struct ActiveSetState {
+  double rz_old = 1.0;
+  bool conjugate = false;
+  double mean_gap = 0.0;  ///< Under force control: the approach estimate of the last step.
+  bool displacement_valid = false;  ///< ws.displacement = A·p
+  int stable_steps = 0, deflations = 0, since_refresh = 0;
+};
+
+// Initial guess: the warm start, or a pressure that is uniform (force control) or, under
+// approach control, shaped like Hertz's p ∝ sqrt(δ − h) on the interpenetration and scaled to
+// the least elastic energy along that shape once its displacement is known (the first product,
+// which the first iteration needs anyway: ScaleHertzStart). Measured on heavy haul: 27/29/31
+// iterations become 21/26/28; pressures proportional to the interpenetration (with the
+// element's own stiffness, the earlier start, or scaled the same way) take 26–31. Returns
+// whether the Hertz shape was used.
+WRC_GRID_PASS bool StartPressure(const ActiveSetProblem& pb, const NormalOptions& options,
+                                 NormalSolution& sol) {
+  const std::size_t n = pb.n;
+  const bool warm =
+      options.warm_start && sol.pressure.size() == n &&
+      std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
+  if (!warm) {
+    sol.pressure.assign(n, 0.0);
+    if (pb.force_control) {
+      std::fill(sol.pressure.begin(), sol.pressure.end(), pb.load.value / (pb.area * n));
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        sol.pressure[i] = std::sqrt(std::max(0.0, pb.load.value - pb.h[i]));
+      }
+    }
+  }
+  if (pb.force_control) {
+    double sum = 0.0;
+    for (double p : sol.pressure) sum += p;
+    const double scale = pb.load.value / (pb.area * sum);
+    for (double& p : sol.pressure) p *= scale;
+  }
+  return !warm && !pb.force_control;
+}
+
+// The elements that can carry pressure: under approach control those interpenetrating at the
+// approach (h < δ), as A·p >= 0 keeps every other gap open; under force control, whose approach
+// is unknown, all. Kept as one stretch per row, so that the passes of an iteration skip the
+// rest of the box (on the combined heavy-haul patches, two thirds of it or more).
+WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, NormalWorkspace& ws,
+                                NormalSolution& sol) {
+  const std::size_t n = pb.n;
+  ws.segments.clear();
+  const std::size_t nx = static_cast<std::size_t>(pb.op.grid().nx);
+  if (pb.force_control) {
+    for (std::size_t row = 0; row < n; row += nx) ws.segments.emplace_back(row, row + nx);
+    return;
+  }
+  for (std::size_t row = 0; row < n; row += nx) {
+    std::size_t lo = row + nx, hi = row;
+    for (std::size_t i = row; i < row + nx; ++i) {
+      if (pb.h[i] < pb.load.value) {
+        lo = std::min(lo, i);
+        hi = i + 1;
+      }
+    }
+    if (hi > lo) ws.segments.emplace_back(lo, hi);
+  }
+  // A warm start may carry pressure where the gap is now open for good.
+  std::size_t open_from = 0;
+  for (const auto& [begin, end] : ws.segments) {
+    std::fill(sol.pressure.begin() + open_from, sol.pressure.begin() + begin, 0.0);
+    open_from = end;
+  }
+  std::fill(sol.pressure.begin() + open_from, sol.pressure.end(), 0.0);
+}
+
+// u = A·p afresh when the carried one is not valid or due for a refresh; after the Hertz start
+// also its scale c = argmin ½c²·pᵀAp − c·pᵀ(δ − h), for p and A·p alike.
+WRC_GRID_PASS void RefreshDisplacement(const ActiveSetProblem& pb, bool scale_hertz_start,
+                                       ActiveSetState& state, NormalWorkspace& ws,
+                                       NormalSolution& sol) {
+  if (state.displacement_valid && state.since_refresh < kRefreshIterations) {
+    ++state.since_refresh;
+    return;
+  }
+  pb.op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.displacement.data(), ws.convolution);
+  state.since_refresh = 1;
+  if (!scale_hertz_start) return;
+  double work = 0.0, energy = 0.0;
+  for (std::size_t i = 0; i < pb.n; ++i) {
+    work += sol.pressure[i] * (pb.load.value - pb.h[i]);
+    energy += sol.pressure[i] * ws.displacement[i];
+  }
+  const double scale = energy > 0.0 ? work / energy : 0.0;
+  for (std::size_t i = 0; i < pb.n; ++i) {
+    sol.pressure[i] *= scale;
+    ws.displacement[i] *= scale;
+  }
+}
+
+struct GapSums {
+  double sum = 0.0, sum_of_squares = 0.0;
+  int n_active = 0;
+};
+
+// The gap g = u + h − δ (δ = 0 under force control) on the segments, the residual (g on the
+// contact, 0 elsewhere) and the sums of g and g² over the contact.
+WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, NormalWorkspace& ws,
+                              const NormalSolution& sol) {
+  const double approach_shift = pb.force_control ? 0.0 : pb.load.value;
+  GapSums sums;
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double g = ws.displacement[i] + pb.h[i] - approach_shift;
+      ws.gap[i] = g;
+      const bool active = sol.pressure[i] > 0.0;
+      ws.residual[i] = active ? g : 0.0;
+      if (active) {
+        sums.sum += g;
+        sums.sum_of_squares += g * g;
+        ++sums.n_active;
+      }
+    }
+  }
+  return sums;
+}
+
+// Under force control the mean gap over the contact is the (unknown) approach: subtracted from
+// gap and residual, in a pass of its own, since Σg² − n·mean² would cancel (the gaps sit near
+// the approach and differ from it by far less). Returns |r|².
+WRC_GRID_PASS double CentreGap(const ActiveSetProblem& pb, const GapSums& sums,
+                               ActiveSetState& state, NormalWorkspace& ws,
+                               const NormalSolution& sol) {
+  if (!pb.force_control) return sums.sum_of_squares;
+  state.mean_gap = sums.sum / sums.n_active;
+  double norm = 0.0;
+  for (std::size_t i = 0; i < pb.n; ++i) {  // the segments: the whole grid
+    ws.gap[i] -= state.mean_gap;
+    const bool active = sol.pressure[i] > 0.0;
+    ws.residual[i] = active ? ws.gap[i] : 0.0;
+    if (active) norm += ws.gap[i] * ws.gap[i];
+  }
+  return norm;
+}
+
+// z = M·r (or r), centred like r under force control; returns r·z for β.
+WRC_GRID_PASS double Precondition(const ActiveSetProblem& pb, int n_active, double residual_norm,
+                                  NormalWorkspace& ws, const NormalSolution& sol,
+                                  const double** z) {
+  *z = ws.residual.data();
+  if (!pb.stencil) return residual_norm;
+  ApplyLocalInverse(*pb.stencil, pb.op.grid(), ws.segments, ws.residual.data(), sol.pressure.data(),
+                    ws.column_sums.data(), ws.preconditioned.data());
+  if (pb.force_control) {  // the segments: the whole grid
+    double sum_z = 0.0;
+    for (std::size_t i = 0; i < pb.n; ++i) sum_z += ws.preconditioned[i];
+    const double mean_z = sum_z / n_active;
+    for (std::size_t i = 0; i < pb.n; ++i) {
+      if (sol.pressure[i] > 0.0) ws.preconditioned[i] -= mean_z;
+    }
+  }
+  double rz = 0.0;
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) rz += ws.residual[i] * ws.preconditioned[i];
+  }
+  *z = ws.preconditioned.data();
+  return rz;
+}
+
+// d ← z + β·d on the contact, zero elsewhere (and off the segments, where it stays zero).
+WRC_GRID_PASS void UpdateDirection(const double* z, double beta, NormalWorkspace& ws,
+                                   const NormalSolution& sol) {
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      ws.direction[i] = sol.pressure[i] > 0.0 ? z[i] + beta * ws.direction[i] : 0.0;
+    }
+  }
+}
+
+// τ = r·d / (A·d)·d over the contact, with r and A·d centred under force control:
+// den = Σ (w − mean w)·d = Σ w·d − mean w·Σ d.
+WRC_GRID_PASS double StepLength(const ActiveSetProblem& pb, int n_active, const NormalWorkspace& ws,
+                                const NormalSolution& sol) {
+  double num = 0.0, rd = 0.0, sum_response = 0.0, sum_direction = 0.0;
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (sol.pressure[i] > 0.0) {
+        num += ws.gap[i] * ws.direction[i];
+        rd += ws.response[i] * ws.direction[i];
+        sum_response += ws.response[i];
+        sum_direction += ws.direction[i];
+      }
+    }
+  }
+  const double mean_response = pb.force_control ? sum_response / n_active : 0.0;
+  const double den = rd - mean_response * sum_direction;
+  return den > 0.0 ? num / den : 0.0;
+}
+
+struct StepSums {
+  double sum = 0.0, change = 0.0;  ///< Σ p and Σ |Δp| after the step
+  bool overlap = false;            ///< an element outside the contact was re-activated
+};
+
+// p ← max(0, p − τ·d) on the contact, and p = max(0, −τ·g) where the gap is negative outside
+// it; the elements clipped or re-activated go to ws.corrected with the pressure they got
+// beyond the plain step, and u follows the plain step: u −= τ·A·d.
+WRC_GRID_PASS StepSums ProjectedStep(const ActiveSetProblem& pb, double tau, NormalWorkspace& ws,
+                                     NormalSolution& sol) {
+  StepSums step;
+  ws.corrected.clear();
+  ws.correction.clear();
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double old = sol.pressure[i];
+      double p = old;
+      if (old > 0.0) {
+        const double stepped = old - tau * ws.direction[i];
+        p = std::max(0.0, stepped);
+        if (stepped < 0.0) {
+          ws.corrected.push_back(i);
+          ws.correction.push_back(-stepped);  // the set pressure minus the −τ·d step
+        }
+      } else if (ws.gap[i] < 0.0) {
+        // Interpenetration outside the contact: let the element carry load again.
+        p = std::max(0.0, -tau * ws.gap[i]);
+        if (p > 0.0) {
+          step.overlap = true;
+          ws.corrected.push_back(i);
+          ws.correction.push_back(p);
+        }
+      }
+      sol.pressure[i] = p;
+      step.sum += p;
+      step.change += std::fabs(p - old);
+    }
+  }
+  for (std::size_t i = 0; i < pb.n; ++i) ws.displacement[i] -= tau * ws.response[i];
+  return step;
+}
+
+// Under force control the total force is re-imposed after each step (the change then counts
+// against the pressures before the step, ws.previous). Returns the scale applied.
+WRC_GRID_PASS double ReimposeForce(const ActiveSetProblem& pb, StepSums& step,
+                                   const NormalWorkspace& ws, NormalSolution& sol) {
+  if (!pb.force_control || !(step.sum > 0.0)) return 1.0;
+  const double scale = pb.load.value / (pb.area * step.sum);
+  for (double& p : sol.pressure) p *= scale;
+  step.sum = pb.load.value / pb.area;
+  step.change = 0.0;
+  for (std::size_t i = 0; i < pb.n; ++i) step.change += std::fabs(sol.pressure[i] - ws.previous[i]);
+  return scale;
+}
+
+// u += A·c for the corrections of the step, then u ← s·u; or u invalid when the corrections
+// are too many to add column by column (the next iteration makes a product).
+WRC_GRID_PASS void CarryDisplacement(const ActiveSetProblem& pb, double scale,
+                                     ActiveSetState& state, NormalWorkspace& ws) {
+  state.displacement_valid = ws.corrected.size() <= kMaxDirectColumns;
+  if (!state.displacement_valid) return;
+  for (std::size_t c = 0; c < ws.corrected.size(); ++c) {
+    AddColumn(pb.columns, pb.op.grid(), ws.corrected[c], ws.correction[c], ws.displacement.data());
+  }
+  if (scale != 1.0) {
+    for (std::size_t i = 0; i < pb.n; ++i) ws.displacement[i] *= scale;
+  }
+}
+
+// Everything lifted off (only possible under approach control when the initial guess
+// overshot): restart from the interpenetration.
+WRC_GRID_PASS void RestartFromInterpenetration(ActiveSetState& state, NormalWorkspace& ws,
+                                               NormalSolution& sol) {
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) sol.pressure[i] = std::max(0.0, -ws.gap[i]);
+  }
+  state.conjugate = false;
+  state.displacement_valid = false;
+}
+
+enum class StepOutcome { kContinue, kRestarted, kConverged };
+
+// One iteration: gap, preconditioned residual, conjugate direction, its response, the
+// projected step and the carried displacement.
+WRC_GRID_PASS StepOutcome ActiveSetStep(const ActiveSetProblem& pb, const NormalOptions& options,
+                                        bool scale_hertz_start, ActiveSetState& state,
+                                        NormalWorkspace& ws, NormalSolution& sol,
+                                        NormalSummary& summary) {
+  RefreshDisplacement(pb, scale_hertz_start, state, ws, sol);
+  const GapSums gaps = GapPass(pb, ws, sol);
+  if (gaps.n_active == 0) {
+    RestartFromInterpenetration(state, ws, sol);
+    return StepOutcome::kRestarted;
+  }
+  const double residual_norm = CentreGap(pb, gaps, state, ws, sol);
+  const double* z = nullptr;
+  const double rz = Precondition(pb, gaps.n_active, residual_norm, ws, sol, &z);
+  UpdateDirection(z, state.conjugate ? rz / state.rz_old : 0.0, ws, sol);
+  state.rz_old = rz;
+  pb.op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
+  const double tau = StepLength(pb, gaps.n_active, ws, sol);
+  if (pb.force_control) ws.previous = sol.pressure;
+  StepSums step = ProjectedStep(pb, tau, ws, sol);
+  state.conjugate = !step.overlap;
+  const double scale = ReimposeForce(pb, step, ws, sol);
+  CarryDisplacement(pb, scale, state, ws);
+  summary.residual = step.sum > 0.0 ? step.change / step.sum : 0.0;
+  return summary.residual < options.tolerance ? StepOutcome::kConverged : StepOutcome::kContinue;
+}
+
+// Two steps without clipping or re-activation: the contact set has settled (it rarely moves
+// again), and the rest is a linear solve on it. Only with three decades or more still to go
+// (closer to the end the setup costs more than it saves: warm-started Manchester solves lost
+// 1 % at two decades), and at most twice, should the set move after all.
+bool DeflationDue(const ActiveSetProblem& pb, const NormalOptions& options,
+                  const ActiveSetState& state, const NormalSummary& summary) {
+  return options.deflate && !pb.force_control && state.stable_steps >= 2 && state.deflations < 2 &&
+         state.displacement_valid && summary.residual > 1000.0 * options.tolerance;
+}
+
+// The approach: prescribed, or under force control the mean gap over the final contact area.
+// `displacement` is A·p, or nullptr (then made into ws.gap).
+double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState& state,
+                     const std::vector<double>** displacement, NormalWorkspace& ws,
+                     const NormalSolution& sol) {
+  if (!pb.force_control) return pb.load.value;
+  if (!*displacement) {
+    pb.op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
+    *displacement = &ws.gap;
+  }
+  const std::vector<double>& u = **displacement;
+  double sum_gap = 0.0;
+  int n_active = 0;
+  for (std::size_t i = 0; i < pb.n; ++i) {
+    if (sol.pressure[i] > 0.0) {
+      sum_gap += u[i] + pb.h[i];
+      ++n_active;
+    }
+  }
+  return n_active > 0 ? sum_gap / n_active : state.mean_gap;
+}
+
+void SizeWorkspace(const FftInfluenceOperator& op, std::size_t n, bool preconditioned,
+                   NormalWorkspace& ws) {
+  ws.gap.resize(n);
+  ws.direction.assign(n, 0.0);
+  ws.response.resize(n);
+  ws.previous.resize(n);
+  ws.displacement.resize(n);
+  if (!op.Fits(ws.convolution)) ws.convolution = op.MakeWorkspace();
+  if (preconditioned) {
+    ws.preconditioned.resize(n);
+    ws.column_sums.resize(static_cast<std::size_t>(op.grid().nx) + 2);
+  }
+}
+
 }  // namespace
 
-// The grid passes built for AVX2 as well as the baseline ISA, chosen at load time (no FMA in
-// either, so both give the same results).
+// Polonsky & Keer (1999), Wear 231: CG restricted to the elements in contact, with the
+// projection p >= 0 after each step and re-activation of elements where the gap is negative.
+// Under force control the mean gap over the contact is the (unknown) approach, so it is
+// subtracted from the residual and the step, and the total force is re-imposed every step.
+//
+// Preconditioned with the 3 × 3 centre M of the inverse influence matrix (as NormCG's FFT
+// preconditioner, Vollebregt 2014, but local). The full inverse has a symbol that vanishes for
+// smooth fields, which restricted to a narrow contact leaves the smooth modes as badly
+// conditioned as before (tried: no gain on the multi-region heavy-haul patches); the truncated
+// stencil keeps a positive symbol there and halves the iterations on every heavy-haul case. M
+// restricted to the contact is positive definite (LocalInverse checks the symbol), so this is
+// PCG on the contact set; under force control z is centred like r. Once the contact set
+// settles, SolveOnContactSet takes over (approach control).
+//
+// Built for AVX2 as well as the baseline ISA, chosen at load time (no FMA in either, so both
+// give the same results).
 WRC_CLONE_FOR_AVX2
 NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
                           const NormalLoad& load, const NormalOptions& options, NormalWorkspace& ws,
                           NormalSolution& sol) {
   Validate(op, h, load);
   const std::size_t n = h.size();
-  const double area = op.grid().element_area();
   const bool force_control = load.kind == NormalLoad::Kind::kForce;
   NormalSummary summary;
-
-  ws.gap.resize(n);
-  ws.direction.assign(n, 0.0);
-  ws.response.resize(n);
-  ws.previous.resize(n);
-  if (!op.Fits(ws.convolution)) ws.convolution = op.MakeWorkspace();
-
-  // Cases with nothing to solve: zero force, or no interpenetration at the given approach.
   const double hmin = *std::min_element(h.begin(), h.end());
-  const bool no_contact = force_control ? load.value == 0.0 : hmin - load.value >= 0.0;
-  if (no_contact) {
+  if (force_control ? load.value == 0.0 : hmin - load.value >= 0.0) {
+    // Nothing to solve: zero force, or no interpenetration at the given approach.
+    SizeWorkspace(op, n, false, ws);
     sol.pressure.assign(n, 0.0);
     Finish(op, h, force_control ? hmin : load.value, nullptr, ws, sol);
     summary.status = SolverStatus::kNoContact;
     return summary;
   }
-
-  // Initial guess: the warm start, or a pressure that is uniform (force control) or, under
-  // approach control, shaped like Hertz's p ∝ sqrt(δ − h) on the interpenetration and scaled to
-  // the least elastic energy along that shape once its displacement is known (the first
-  // product, which the first iteration needs anyway). Measured on heavy haul: 27/29/31
-  // iterations become 21/26/28; pressures proportional to the interpenetration (with the
-  // element's own stiffness, the earlier start, or scaled the same way) take 26–31.
-  const bool warm =
-      options.warm_start && sol.pressure.size() == n &&
-      std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
-  const bool hertz_start = !warm && !force_control;
-  if (!warm) {
-    sol.pressure.assign(n, 0.0);
-    if (force_control) {
-      std::fill(sol.pressure.begin(), sol.pressure.end(), load.value / (area * n));
-    } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        sol.pressure[i] = std::sqrt(std::max(0.0, load.value - h[i]));
-      }
-    }
-  }
-  if (force_control) {
-    double sum = 0.0;
-    for (double p : sol.pressure) sum += p;
-    const double scale = load.value / (area * sum);
-    for (double& p : sol.pressure) p *= scale;
-  }
-
-  // Polonsky & Keer (1999), Wear 231: CG restricted to the elements in contact, with the
-  // projection p >= 0 after each step and re-activation of elements where the gap is negative.
-  // Under force control the mean gap over the contact is the (unknown) approach, so it is
-  // subtracted from the residual and the step, and the total force is re-imposed every step.
-  //
-  // Preconditioned with the 3 × 3 centre M of the inverse influence matrix (as NormCG's FFT
-  // preconditioner, Vollebregt 2014, but local). The full inverse has a symbol that vanishes
-  // for smooth fields, which restricted to a narrow contact leaves the smooth modes as badly
-  // conditioned as before (tried: no gain on the multi-region heavy-haul patches);
-  // the truncated stencil keeps a positive symbol there and halves the iterations on every
-  // heavy-haul case. M restricted to the contact is positive definite (LocalInverse checks the
-  // symbol), so this is PCG on the contact set; under force control z is centred like r.
   const std::optional<LocalInverseStencil> local_inverse =
       options.precondition ? op.LocalInverse(InfluenceComponent::kNN) : std::nullopt;
-  const bool precondition = local_inverse.has_value();
-  const LocalInverseStencil stencil = local_inverse.value_or(LocalInverseStencil{});
-  // The elements that can carry pressure: under approach control those interpenetrating at
-  // the approach (h < δ), as A·p >= 0 keeps every other gap open; under force control, whose
-  // approach is unknown, all. Kept as one stretch per row, so that the passes of an iteration
-  // skip the rest of the box (on the combined heavy-haul patches, two thirds of it or more).
-  ws.segments.clear();
-  const std::size_t nx = static_cast<std::size_t>(op.grid().nx);
-  if (force_control) {
-    for (std::size_t row = 0; row < n; row += nx) ws.segments.emplace_back(row, row + nx);
-  } else {
-    for (std::size_t row = 0; row < n; row += nx) {
-      std::size_t lo = row + nx, hi = row;
-      for (std::size_t i = row; i < row + nx; ++i) {
-        if (h[i] < load.value) {
-          lo = std::min(lo, i);
-          hi = i + 1;
-        }
-      }
-      if (hi > lo) ws.segments.emplace_back(lo, hi);
-    }
-    // A warm start may carry pressure where the gap is now open for good.
-    std::size_t open_from = 0;
-    for (const auto& [begin, end] : ws.segments) {
-      std::fill(sol.pressure.begin() + open_from, sol.pressure.begin() + begin, 0.0);
-      open_from = end;
-    }
-    std::fill(sol.pressure.begin() + open_from, sol.pressure.end(), 0.0);
-  }
-  ws.residual.assign(n, 0.0);  // zero off the segments, where the stencil reads it too
-  if (precondition) {
-    ws.preconditioned.resize(n);
-    ws.column_sums.resize(static_cast<std::size_t>(op.grid().nx) + 2);
-  }
-  double rz_old = 1.0;
-  bool conjugate = false;
-  double mean_gap = 0.0;
-  // The displacement u = A·p is carried from one iteration to the next: a step changes the
-  // pressure by −τ·d, plus a correction at the few elements it clipped to zero or re-activated,
-  // so u ← s·(u − τ·A·d + A·c) with the response A·d already at hand and A·c summed directly
-  // from the influence coefficients (one column per corrected element). That saves one of the
-  // two FFT products per iteration, also while the contact area still changes. With more than
-  // kMaxDirectColumns corrections the FFT is cheaper, and u is recomputed. It is recomputed at
-  // least every kRefreshIterations anyway, so that round-off cannot accumulate: each carried
-  // update adds ~1e-16 of u, so 64 of them stay near 1e-14, six orders below the tolerance
-  // (measured: the heavy-haul forces move by 5e-16 of the load against a refresh every 16).
-  constexpr int kRefreshIterations = 64;
   const InfluenceCoefficients columns(op.grid(), op.material(), InfluenceComponent::kNN);
-  const Grid& grid = op.grid();
-  ws.displacement.resize(n);
-  bool displacement_valid = false;
-  int stable_steps = 0, deflations = 0;
-  int since_refresh = 0;
+  const ActiveSetProblem pb{op,
+                            h,
+                            load,
+                            columns,
+                            local_inverse ? &*local_inverse : nullptr,
+                            n,
+                            op.grid().element_area(),
+                            force_control};
+  SizeWorkspace(op, n, local_inverse.has_value(), ws);
+  const bool hertz_start = StartPressure(pb, options, sol);
+  FindSegments(pb, ws, sol);
+  ws.residual.assign(pb.n, 0.0);  // zero off the segments, where the stencil reads it too
+  ActiveSetState state;
   for (int it = 1; it <= options.max_iterations; ++it) {
-    if (!displacement_valid || since_refresh >= kRefreshIterations) {
-      op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.displacement.data(),
-               ws.convolution);
-      since_refresh = 0;
-      if (it == 1 && hertz_start) {
-        // c = argmin ½c²·pᵀAp − c·pᵀ(δ − h), for p and A·p alike.
-        double work = 0.0, energy = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          work += sol.pressure[i] * (load.value - h[i]);
-          energy += sol.pressure[i] * ws.displacement[i];
-        }
-        const double scale = energy > 0.0 ? work / energy : 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          sol.pressure[i] *= scale;
-          ws.displacement[i] *= scale;
-        }
-      }
-    }
-    ++since_refresh;
-    // The passes over the grid are fused where the arithmetic allows (they are a third of an
-    // iteration on a large box): gap and its sums; the direction; the step's inner products;
-    // the update with the displacement, the force and, under approach control, the change.
-    const double approach_shift = force_control ? 0.0 : load.value;
-    double sum_gap = 0.0, sum_gap2 = 0.0;
-    int n_active = 0;
-    for (const auto& [begin, end] : ws.segments) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const double g = ws.displacement[i] + h[i] - approach_shift;
-        ws.gap[i] = g;
-        const bool active = sol.pressure[i] > 0.0;
-        ws.residual[i] = active ? g : 0.0;
-        if (active) {
-          sum_gap += g;
-          sum_gap2 += g * g;
-          ++n_active;
-        }
-      }
-    }
-    if (n_active == 0) {
-      // Everything lifted off (only possible under approach control when the initial guess
-      // overshot): restart from the interpenetration.
-      for (const auto& [begin, end] : ws.segments) {
-        for (std::size_t i = begin; i < end; ++i) sol.pressure[i] = std::max(0.0, -ws.gap[i]);
-      }
-      conjugate = false;
-      displacement_valid = false;
-      continue;
-    }
-    double gap_norm = sum_gap2;
-    if (force_control) {
-      // Centred in a pass of its own: Σg² − n·mean² would cancel (the gaps sit near the
-      // approach and differ from it by far less).
-      mean_gap = sum_gap / n_active;
-      gap_norm = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {  // the segments: the whole grid
-        ws.gap[i] -= mean_gap;
-        const bool active = sol.pressure[i] > 0.0;
-        ws.residual[i] = active ? ws.gap[i] : 0.0;
-        if (active) gap_norm += ws.gap[i] * ws.gap[i];
-      }
-    }
-    // z = M·r (or r), and r·z for β.
-    const double* z = ws.residual.data();
-    double rz = gap_norm;
-    if (precondition) {
-      ApplyLocalInverse(stencil, op.grid(), ws.segments, ws.residual.data(), sol.pressure.data(),
-                        ws.column_sums.data(), ws.preconditioned.data());
-      if (force_control) {  // the segments: the whole grid
-        double sum_z = 0.0;
-        for (std::size_t i = 0; i < n; ++i) sum_z += ws.preconditioned[i];
-        const double mean_z = sum_z / n_active;
-        for (std::size_t i = 0; i < n; ++i) {
-          if (sol.pressure[i] > 0.0) ws.preconditioned[i] -= mean_z;
-        }
-      }
-      rz = 0.0;
-      for (const auto& [begin, end] : ws.segments) {
-        for (std::size_t i = begin; i < end; ++i) rz += ws.residual[i] * ws.preconditioned[i];
-      }
-      z = ws.preconditioned.data();
-    }
-    const double beta = conjugate ? rz / rz_old : 0.0;
-    for (const auto& [begin, end] : ws.segments) {  // the direction is zero off them
-      for (std::size_t i = begin; i < end; ++i) {
-        ws.direction[i] = sol.pressure[i] > 0.0 ? z[i] + beta * ws.direction[i] : 0.0;
-      }
-    }
-    rz_old = rz;
-
-    op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
-    // den = Σ (r − mean r)·d over the contact = Σ r·d − mean r·Σ d.
-    double num = 0.0, rd = 0.0, sum_response = 0.0, sum_direction = 0.0;
-    for (const auto& [begin, end] : ws.segments) {
-      for (std::size_t i = begin; i < end; ++i) {
-        if (sol.pressure[i] > 0.0) {
-          num += ws.gap[i] * ws.direction[i];
-          rd += ws.response[i] * ws.direction[i];
-          sum_response += ws.response[i];
-          sum_direction += ws.direction[i];
-        }
-      }
-    }
-    const double mean_response = force_control ? sum_response / n_active : 0.0;
-    const double den = rd - mean_response * sum_direction;
-    const double tau = den > 0.0 ? num / den : 0.0;
-
-    if (force_control) ws.previous = sol.pressure;
-    bool overlap = false;
-    ws.corrected.clear();
-    ws.correction.clear();
-    double sum = 0.0, change = 0.0;
-    for (const auto& [begin, end] : ws.segments) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const double old = sol.pressure[i];
-        double p = old;
-        if (old > 0.0) {
-          const double stepped = old - tau * ws.direction[i];
-          p = std::max(0.0, stepped);
-          if (stepped < 0.0) {
-            ws.corrected.push_back(i);
-            ws.correction.push_back(-stepped);  // the set pressure minus the −τ·d step
-          }
-        } else if (ws.gap[i] < 0.0) {
-          // Interpenetration outside the contact: let the element carry load again.
-          p = std::max(0.0, -tau * ws.gap[i]);
-          if (p > 0.0) {
-            overlap = true;
-            ws.corrected.push_back(i);
-            ws.correction.push_back(p);
-          }
-        }
-        sol.pressure[i] = p;
-        sum += p;
-        change += std::fabs(p - old);
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i) ws.displacement[i] -= tau * ws.response[i];
-    conjugate = !overlap;
-
-    double scale = 1.0;
-    if (force_control && sum > 0.0) {
-      scale = load.value / (area * sum);
-      for (double& p : sol.pressure) p *= scale;
-      sum = load.value / area;
-      change = 0.0;
-      for (std::size_t i = 0; i < n; ++i) change += std::fabs(sol.pressure[i] - ws.previous[i]);
-    }
-    displacement_valid = ws.corrected.size() <= kMaxDirectColumns;
-    if (displacement_valid) {
-      for (std::size_t c = 0; c < ws.corrected.size(); ++c) {
-        AddColumn(columns, grid, ws.corrected[c], ws.correction[c], ws.displacement.data());
-      }
-      if (scale != 1.0) {
-        for (std::size_t i = 0; i < n; ++i) ws.displacement[i] *= scale;
-      }
-    }
+    const StepOutcome outcome =
+        ActiveSetStep(pb, options, it == 1 && hertz_start, state, ws, sol, summary);
+    if (outcome == StepOutcome::kRestarted) continue;
     summary.iterations = it;
-    summary.residual = sum > 0.0 ? change / sum : 0.0;
-    if (summary.residual < options.tolerance) {
+    if (outcome == StepOutcome::kConverged) {
       summary.status = SolverStatus::kConverged;
       break;
     }
-    // Two steps without clipping or re-activation: the contact set has settled (it rarely moves
-    // again), and the rest is a linear solve on it. Only with three decades or more still to
-    // go (closer to the end the setup costs more than it saves: warm-started Manchester solves
-    // lost 1 % at two decades), and at most twice, should the set move after all.
-    stable_steps = ws.corrected.empty() ? stable_steps + 1 : 0;
-    if (options.deflate && !force_control && stable_steps >= 2 && deflations < 2 &&
-        displacement_valid && summary.residual > 1000.0 * options.tolerance) {
-      ++deflations;
-      const DeflationOutcome outcome =
-          SolveOnContactSet(op, columns, h, load.value, options, options.max_iterations - it,
-                            precondition ? &stencil : nullptr, ws, sol);
-      it += outcome.iterations;
-      summary.iterations = it;
-      if (outcome.converged) {
-        summary.residual = outcome.residual;
-        summary.status = SolverStatus::kConverged;
-        break;
-      }
-      displacement_valid = false;  // the pressures were clipped
-      conjugate = false;
-      stable_steps = 0;
+    state.stable_steps = ws.corrected.empty() ? state.stable_steps + 1 : 0;
+    if (!DeflationDue(pb, options, state, summary)) continue;
+    ++state.deflations;
+    const DeflationOutcome deflation = SolveOnContactSet(
+        op, columns, h, load.value, options, options.max_iterations - it, pb.stencil, ws, sol);
+    it += deflation.iterations;
+    summary.iterations = it;
+    if (deflation.converged) {
+      summary.residual = deflation.residual;
+      summary.status = SolverStatus::kConverged;
+      break;
     }
+    state.displacement_valid = false;  // the pressures were clipped
+    state.conjugate = false;
+    state.stable_steps = 0;
   }
-
   // The carried displacement is A·p of the final pressures when the last step kept it (it
   // differs from a fresh product by the round-off of at most kRefreshIterations updates,
   // ~1e-14 relative), and saves the product of the deformed distance.
-  const std::vector<double>* displacement = displacement_valid ? &ws.displacement : nullptr;
-  // The approach under force control is the mean gap over the final contact area.
-  double approach = load.value;
-  if (force_control) {
-    if (!displacement) {
-      op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
-      displacement = &ws.gap;
-    }
-    const std::vector<double>& u = *displacement;
-    double sum_gap = 0.0;
-    int n_active = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (sol.pressure[i] > 0.0) {
-        sum_gap += u[i] + h[i];
-        ++n_active;
-      }
-    }
-    approach = n_active > 0 ? sum_gap / n_active : mean_gap;
-  }
+  const std::vector<double>* displacement = state.displacement_valid ? &ws.displacement : nullptr;
+  const double approach = FinalApproach(pb, state, &displacement, ws, sol);
   Finish(op, h, approach, displacement, ws, sol);
   return summary;
 }
