@@ -8,10 +8,36 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/common/pcg.h"
 #include "core/common/portable_simd.h"
 
 namespace wrc {
+
+struct NormalWorkspace::Scratch {
+  ConvolutionWorkspace convolution;
+  std::vector<double> gap, direction, response, previous, displacement;
+  std::vector<double> residual;        ///< the gap on the contact, zero elsewhere
+  std::vector<double> preconditioned;  ///< the residual after the preconditioner
+  std::vector<double> column_sums;     ///< one grid row (+2): residual above + below
+  /// The elements that can carry pressure, one [begin, end) stretch per grid row.
+  std::vector<std::pair<std::size_t, std::size_t>> segments;
+  /// The deflated phase: the contact set, A·Z on it (column-major), the set as a 0/1 mask of
+  /// the grid, and the vectors of its conjugate gradients (on the set).
+  std::vector<std::size_t> contact;
+  std::vector<double> coarse_response, mask;
+  linear::PcgScratch pcg;
+  std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
+  std::vector<double> correction;      ///< their pressure minus the unclipped step
+};
+
+NormalWorkspace::NormalWorkspace() : scratch_(std::make_unique<Scratch>()) {}
+NormalWorkspace::~NormalWorkspace() = default;
+NormalWorkspace::NormalWorkspace(NormalWorkspace&&) noexcept = default;
+NormalWorkspace& NormalWorkspace::operator=(NormalWorkspace&&) noexcept = default;
+
 namespace {
+
+using Scratch = NormalWorkspace::Scratch;
 
 void Validate(const FftInfluenceOperator& op, const std::vector<double>& h,
               const NormalLoad& load) {
@@ -34,7 +60,7 @@ void Validate(const FftInfluenceOperator& op, const std::vector<double>& h,
 
 // `displacement`: A·p when the caller has it at hand (then no product is made), or nullptr.
 void Finish(const FftInfluenceOperator& op, const std::vector<double>& h, double approach,
-            const std::vector<double>* displacement, NormalWorkspace& ws, NormalSolution& sol) {
+            const std::vector<double>* displacement, Scratch& ws, NormalSolution& sol) {
   const std::size_t n = h.size();
   if (!displacement) {
     op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.response.data(), ws.convolution);
@@ -296,194 +322,229 @@ struct DeflationOutcome {
   double residual = 0.0;
 };
 
+// Blocks of 3 and 4 elements take as many iterations as 6, and 8 one more; 6 has the fewest
+// blocks to set up for that (measured on heavy haul).
+constexpr int kDeflationBlock = 6;
+constexpr int kDeflationRounds = 3;
+
+// C in grid order: the elements of the segments that ws.mask marks.
+void CollectContactSet(Scratch& ws) {
+  ws.contact.clear();
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (ws.mask[i] > 0.0) ws.contact.push_back(i);
+    }
+  }
+}
+
+// The deflation space of one round: C's blocks, A·Z on C (ws.coarse_response) and the
+// Cholesky factor of E = Zᵀ·A·Z, symmetric positive definite as A_CC is (symmetrised against
+// round-off).
+struct CoarseSpace {
+  ContactBlocks blocks;
+  Eigen::LLT<Eigen::MatrixXd> factor;
+  Eigen::VectorXd vector;  ///< scratch, one value per block
+};
+
+bool BuildCoarseSpace(const std::vector<double>& prefix, int nx, int ny, Scratch& ws,
+                      CoarseSpace& space) {
+  space.blocks = GroupIntoBlocks(ws.contact, nx, ny, kDeflationBlock);
+  const std::vector<int>& block = space.blocks.block;
+  const int m = space.blocks.count;
+  const std::size_t nc = ws.contact.size();
+  CoarseResponse(space.blocks, prefix, nx, ny, ws.coarse_response);
+  Eigen::MatrixXd coarse = Eigen::MatrixXd::Zero(m, m);
+  const Eigen::Map<const Eigen::MatrixXd> az(ws.coarse_response.data(),
+                                             static_cast<Eigen::Index>(nc), m);
+  for (std::size_t c = 0; c < nc; ++c) coarse.row(block[c]) += az.row(static_cast<Eigen::Index>(c));
+  coarse = 0.5 * (coarse + coarse.transpose()).eval();
+  space.factor.compute(coarse);
+  space.vector.resize(m);
+  return space.factor.info() == Eigen::Success;
+}
+
+// A_CC for the conjugate gradients on C, preconditioned by the local inverse with C as the
+// contact mask and deflated by the A-orthogonal projection off the blocks.
+//
+// The products of this phase only need A·d on C. Summed directly they cost |C|² pairs of
+// elements, against the FFT's product over the padded grid, which also carries the
+// displacement off C; that is only read after the round (complementarity), so the direct way
+// refreshes it there with one product. With one refresh per round of ~5 products the
+// break-even is 0.8 of a product: heavy_haul_z1.087 (749 elements in a 26 400-point transform,
+// 0.63 M instructions against 1.5 M), z1.162 (normal solve −3.5 % in time) and small patches go
+// direct, the Manchester patches of ~500 elements and z1.194 keep the FFT. kDirectPairCost:
+// instructions per pair of AddRunResponse (measured).
+class ContactSetOperator {
+ public:
+  static constexpr double kDirectPairCost = 1.1;
+
+  ContactSetOperator(const FftInfluenceOperator& op, const InfluenceCoefficients& columns,
+                     const LocalInverseStencil* stencil, CoarseSpace& space, Scratch& ws)
+      : op_(op),
+        columns_(columns),
+        stencil_(stencil),
+        space_(space),
+        ws_(ws),
+        nc_(ws.contact.size()),
+        direct_(kDirectPairCost * static_cast<double>(nc_) * static_cast<double>(nc_) <
+                0.8 * op.ProductCost()) {}
+
+  bool direct() const { return direct_; }
+
+  // w = A·d on C; with the FFT the whole response stays in ws.response for Stepped.
+  void Apply(const std::vector<double>& d, std::vector<double>& w) {
+    if (direct_) {
+      ContactResponse(space_.blocks, columns_, d, w);
+      return;
+    }
+    for (std::size_t c = 0; c < nc_; ++c) ws_.direction[ws_.contact[c]] = d[c];
+    op_.Apply(InfluenceComponent::kNN, ws_.direction.data(), ws_.response.data(), ws_.convolution);
+    for (std::size_t c = 0; c < nc_; ++c) w[c] = ws_.response[ws_.contact[c]];
+  }
+
+  void Precondition(const std::vector<double>& r, std::vector<double>& z) {
+    if (!stencil_) {
+      z = r;
+    } else {
+      for (std::size_t c = 0; c < nc_; ++c) ws_.residual[ws_.contact[c]] = r[c];
+      ApplyLocalInverse(*stencil_, op_.grid(), ws_.segments, ws_.residual.data(), ws_.mask.data(),
+                        ws_.column_sums.data(), ws_.preconditioned.data());
+      for (std::size_t c = 0; c < nc_; ++c) z[c] = ws_.preconditioned[ws_.contact[c]];
+    }
+    Project(z.data());
+  }
+
+  // With the FFT, the displacement follows the step: u += α·A·d.
+  void Stepped(double alpha) {
+    if (direct_) return;
+    for (std::size_t i = 0; i < ws_.displacement.size(); ++i) {
+      ws_.displacement[i] += alpha * ws_.response[i];
+    }
+  }
+
+  // z ← z − Z·E⁻¹·(AZ)ᵀ·z: the A-orthogonal projection off the blocks.
+  void Project(double* z) {
+    const Eigen::Map<const Eigen::MatrixXd> az(ws_.coarse_response.data(),
+                                               static_cast<Eigen::Index>(nc_), space_.blocks.count);
+    space_.vector.noalias() =
+        az.transpose() * Eigen::Map<const Eigen::VectorXd>(z, static_cast<Eigen::Index>(nc_));
+    space_.factor.solveInPlace(space_.vector);
+    for (std::size_t c = 0; c < nc_; ++c) z[c] -= space_.vector(space_.blocks.block[c]);
+  }
+
+ private:
+  const FftInfluenceOperator& op_;
+  const InfluenceCoefficients& columns_;
+  const LocalInverseStencil* stencil_;
+  CoarseSpace& space_;
+  Scratch& ws_;
+  std::size_t nc_;
+  bool direct_;
+};
+
+// The start of a round: x = p on C plus the coarse correction Z·E⁻¹·Zᵀ·r, whose displacement
+// takes one product; r = δ − h − A·x on C.
+void StartOnContactSet(const std::vector<double>& h, double approach, ContactSetOperator& a,
+                       CoarseSpace& space, Scratch& ws, const NormalSolution& sol) {
+  linear::PcgScratch& s = ws.pcg;
+  const std::size_t nc = ws.contact.size();
+  const std::vector<int>& block = space.blocks.block;
+  s.Resize(nc);
+  space.vector.setZero();
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t i = ws.contact[c];
+    s.x[c] = sol.pressure[i];
+    space.vector(block[c]) += approach - h[i] - ws.displacement[i];
+  }
+  space.factor.solveInPlace(space.vector);
+  if (!a.direct()) std::fill(ws.direction.begin(), ws.direction.end(), 0.0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    s.x[c] += space.vector(block[c]);
+    s.d[c] = space.vector(block[c]);
+  }
+  a.Apply(s.d, s.w);
+  a.Stepped(1.0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t i = ws.contact[c];
+    s.r[c] = approach - h[i] - (a.direct() ? ws.displacement[i] + s.w[c] : ws.displacement[i]);
+  }
+}
+
+// Complementarity after a round: p > 0 on C and open gaps off it, or else the next C (ws.mask)
+// without the elements where p <= 0 and with those where the gap is negative. The displacement
+// loses the dropped pressures column by column, or is marked stale (`current` false) when they
+// are too many. Returns whether C was the solution's contact set.
+bool UpdateContactSet(const InfluenceCoefficients& columns, const Grid& grid,
+                      const std::vector<double>& h, double approach, Scratch& ws,
+                      NormalSolution& sol, bool* current) {
+  const std::vector<double>& x = ws.pcg.x;
+  ws.corrected.clear();
+  ws.correction.clear();
+  for (std::size_t c = 0; c < ws.contact.size(); ++c) {
+    if (x[c] <= 0.0) {
+      const std::size_t i = ws.contact[c];
+      ws.mask[i] = 0.0;
+      ws.corrected.push_back(i);
+      ws.correction.push_back(-x[c]);  // back to p = 0
+      sol.pressure[i] = 0.0;
+    }
+  }
+  bool added = false;
+  for (const auto& [begin, end] : ws.segments) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (ws.mask[i] == 0.0 && ws.displacement[i] + h[i] - approach < 0.0) {
+        ws.mask[i] = 1.0;  // joins with p = 0 for now
+        added = true;
+      }
+    }
+  }
+  if (ws.corrected.empty() && !added) return true;
+  if (ws.corrected.size() <= kMaxDirectColumns) {
+    for (std::size_t k = 0; k < ws.corrected.size(); ++k) {
+      AddColumn(columns, grid, ws.corrected[k], ws.correction[k], ws.displacement.data());
+    }
+  } else {
+    *current = false;
+  }
+  return false;
+}
+
 DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
                                    const InfluenceCoefficients& columns,
                                    const std::vector<double>& h, double approach,
                                    const NormalOptions& options, int max_iterations,
-                                   const LocalInverseStencil* stencil, NormalWorkspace& ws,
+                                   const LocalInverseStencil* stencil, Scratch& ws,
                                    NormalSolution& sol) {
-  // Blocks of 3 and 4 elements take as many iterations as 6, and 8 one more; 6 has the fewest
-  // blocks to set up for that (measured on heavy haul).
-  constexpr int kBlock = 6;
-  constexpr int kRounds = 3;
   const Grid& grid = op.grid();
-  const int nx = grid.nx, ny = grid.ny;
   const std::size_t n = h.size();
   DeflationOutcome outcome;
-
-  const std::vector<double> prefix = RowPrefixSums(columns, nx, ny);
+  const std::vector<double> prefix = RowPrefixSums(columns, grid.nx, grid.ny);
   // C as a 0/1 mask of the grid (also the preconditioner's contact mask).
   ws.mask.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) ws.mask[i] = sol.pressure[i] > 0.0 ? 1.0 : 0.0;
   std::fill(ws.residual.begin(), ws.residual.end(), 0.0);
-
   bool displacement_current = true;  // ws.displacement = A·p
-  for (int round = 0; round < kRounds && displacement_current; ++round) {
-    // C in grid order, its blocks, and A·Z on it.
-    ws.contact.clear();
-    for (const auto& [begin, end] : ws.segments) {
-      for (std::size_t i = begin; i < end; ++i) {
-        if (ws.mask[i] > 0.0) ws.contact.push_back(i);
-      }
-    }
-    const std::size_t nc = ws.contact.size();
-    if (nc == 0) break;
-    const ContactBlocks blocks = GroupIntoBlocks(ws.contact, nx, ny, kBlock);
-    const std::vector<int>& block = blocks.block;
-    const int m = blocks.count;
-    CoarseResponse(blocks, prefix, nx, ny, ws.coarse_response);
-    // E = Zᵀ·A·Z, symmetric positive definite as A_CC is (symmetrised against round-off).
-    Eigen::MatrixXd coarse = Eigen::MatrixXd::Zero(m, m);
-    const Eigen::Map<const Eigen::MatrixXd> az(ws.coarse_response.data(),
-                                               static_cast<Eigen::Index>(nc), m);
-    for (std::size_t c = 0; c < nc; ++c)
-      coarse.row(block[c]) += az.row(static_cast<Eigen::Index>(c));
-    coarse = 0.5 * (coarse + coarse.transpose()).eval();
-    const Eigen::LLT<Eigen::MatrixXd> factor(coarse);
-    if (factor.info() != Eigen::Success) break;
-    Eigen::VectorXd coarse_vector(m);
-    // z ← z − Z·E⁻¹·(AZ)ᵀ·z: the A-orthogonal projection off the blocks.
-    auto project = [&](double* z) {
-      coarse_vector.noalias() =
-          az.transpose() * Eigen::Map<const Eigen::VectorXd>(z, static_cast<Eigen::Index>(nc));
-      factor.solveInPlace(coarse_vector);
-      for (std::size_t c = 0; c < nc; ++c) z[c] -= coarse_vector(block[c]);
-    };
-    // The local inverse with C as the contact mask.
-    auto precondition = [&](const std::vector<double>& r, std::vector<double>& z) {
-      if (!stencil) {
-        z = r;
-        return;
-      }
-      for (std::size_t c = 0; c < nc; ++c) ws.residual[ws.contact[c]] = r[c];
-      ApplyLocalInverse(*stencil, grid, ws.segments, ws.residual.data(), ws.mask.data(),
-                        ws.column_sums.data(), ws.preconditioned.data());
-      for (std::size_t c = 0; c < nc; ++c) z[c] = ws.preconditioned[ws.contact[c]];
-    };
-
-    // The products of this phase only need A·d on C. Summed directly they cost |C|² pairs of
-    // elements, against the FFT's product over the padded grid, which also carries the
-    // displacement off C; that is only read after the round (complementarity, the caller), so
-    // the direct way refreshes it there with one product. With one refresh per round of ~5
-    // products the break-even is 0.8 of a product: heavy_haul_z1.087 (749 elements in a
-    // 26 400-point transform, 0.63 M instructions against 1.5 M), z1.162 (normal solve −3.5 %
-    // in time) and small patches go direct, the Manchester patches of ~500 elements and
-    // z1.194 keep the FFT. kDirectPairCost: instructions per pair of AddRunResponse (measured).
-    constexpr double kDirectPairCost = 1.1;
-    const bool direct = kDirectPairCost * static_cast<double>(nc) * static_cast<double>(nc) <
-                        0.8 * op.ProductCost();
-    // w = A·d on C (d, w: values on C); with the FFT also the displacement += step·A·d.
-    auto response = [&](const std::vector<double>& d) {
-      if (direct) {
-        ContactResponse(blocks, columns, d, ws.w);
-        return;
-      }
-      for (std::size_t c = 0; c < nc; ++c) ws.direction[ws.contact[c]] = d[c];
-      op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
-      for (std::size_t c = 0; c < nc; ++c) ws.w[c] = ws.response[ws.contact[c]];
-    };
-
-    // Start: the coarse correction x ← x + Z·E⁻¹·Zᵀ·r, whose displacement takes one product;
-    // r = δ − h − A·x on C.
-    ws.x.resize(nc);
-    ws.r.resize(nc);
-    ws.z.resize(nc);
-    ws.d.resize(nc);
-    ws.w.resize(nc);
-    coarse_vector.setZero();
-    for (std::size_t c = 0; c < nc; ++c) {
-      const std::size_t i = ws.contact[c];
-      ws.x[c] = sol.pressure[i];
-      coarse_vector(block[c]) += approach - h[i] - ws.displacement[i];
-    }
-    factor.solveInPlace(coarse_vector);
-    if (!direct) std::fill(ws.direction.begin(), ws.direction.end(), 0.0);
-    for (std::size_t c = 0; c < nc; ++c) {
-      ws.x[c] += coarse_vector(block[c]);
-      ws.d[c] = coarse_vector(block[c]);
-    }
-    response(ws.d);
+  for (int round = 0; round < kDeflationRounds && displacement_current; ++round) {
+    CollectContactSet(ws);
+    if (ws.contact.empty()) break;
+    CoarseSpace space;
+    if (!BuildCoarseSpace(prefix, grid.nx, grid.ny, ws, space)) break;
+    ContactSetOperator a(op, columns, stencil, space, ws);
+    StartOnContactSet(h, approach, a, space, ws, sol);
     ++outcome.iterations;
-    if (!direct) {
-      for (std::size_t i = 0; i < n; ++i) ws.displacement[i] += ws.response[i];
-    }
-    for (std::size_t c = 0; c < nc; ++c) {
-      const std::size_t i = ws.contact[c];
-      ws.r[c] = approach - h[i] - (direct ? ws.displacement[i] + ws.w[c] : ws.displacement[i]);
-    }
-    precondition(ws.r, ws.z);
-    project(ws.z.data());
-    ws.d = ws.z;
-    double rz = 0.0;
-    for (std::size_t c = 0; c < nc; ++c) rz += ws.r[c] * ws.z[c];
-    bool solved = false;
-    while (outcome.iterations < max_iterations) {
-      response(ws.d);
-      ++outcome.iterations;
-      double dw = 0.0;
-      for (std::size_t c = 0; c < nc; ++c) dw += ws.d[c] * ws.w[c];
-      const double alpha = dw > 0.0 ? rz / dw : 0.0;
-      double change = 0.0, sum = 0.0;
-      for (std::size_t c = 0; c < nc; ++c) {
-        ws.x[c] += alpha * ws.d[c];
-        ws.r[c] -= alpha * ws.w[c];
-        change += std::fabs(alpha * ws.d[c]);
-        sum += std::fabs(ws.x[c]);
-      }
-      if (!direct) {
-        for (std::size_t i = 0; i < n; ++i) ws.displacement[i] += alpha * ws.response[i];
-      }
-      outcome.residual = sum > 0.0 ? change / sum : 0.0;
-      if (outcome.residual < options.tolerance) {
-        solved = true;
-        break;
-      }
-      precondition(ws.r, ws.z);
-      project(ws.z.data());
-      double rz_new = 0.0;
-      for (std::size_t c = 0; c < nc; ++c) rz_new += ws.r[c] * ws.z[c];
-      const double beta = rz_new / rz;
-      rz = rz_new;
-      for (std::size_t c = 0; c < nc; ++c) ws.d[c] = ws.z[c] + beta * ws.d[c];
-    }
-    for (std::size_t c = 0; c < nc; ++c) sol.pressure[ws.contact[c]] = ws.x[c];
-    if (!solved) break;
-    if (direct) {
+    const linear::PcgOutcome pcg =
+        linear::SolvePcg(a, options.tolerance, max_iterations - outcome.iterations, ws.pcg);
+    outcome.iterations += pcg.iterations;
+    if (pcg.iterations > 0) outcome.residual = pcg.residual;
+    for (std::size_t c = 0; c < ws.contact.size(); ++c) sol.pressure[ws.contact[c]] = ws.pcg.x[c];
+    if (!pcg.converged) break;
+    if (a.direct()) {
       op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.displacement.data(),
                ws.convolution);
     }
-
-    // Complementarity: p > 0 on C, open gaps off it; otherwise the next C.
-    ws.corrected.clear();
-    ws.correction.clear();
-    for (std::size_t c = 0; c < nc; ++c) {
-      if (ws.x[c] <= 0.0) {
-        const std::size_t i = ws.contact[c];
-        ws.mask[i] = 0.0;
-        ws.corrected.push_back(i);
-        ws.correction.push_back(-ws.x[c]);  // back to p = 0
-        sol.pressure[i] = 0.0;
-      }
-    }
-    bool added = false;
-    for (const auto& [begin, end] : ws.segments) {
-      for (std::size_t i = begin; i < end; ++i) {
-        if (ws.mask[i] == 0.0 && ws.displacement[i] + h[i] - approach < 0.0) {
-          ws.mask[i] = 1.0;  // joins with p = 0 for now
-          added = true;
-        }
-      }
-    }
-    if (ws.corrected.empty() && !added) {
+    if (UpdateContactSet(columns, grid, h, approach, ws, sol, &displacement_current)) {
       outcome.converged = true;
       return outcome;
-    }
-    if (ws.corrected.size() <= kMaxDirectColumns) {
-      for (std::size_t k = 0; k < ws.corrected.size(); ++k) {
-        AddColumn(columns, grid, ws.corrected[k], ws.correction[k], ws.displacement.data());
-      }
-    } else {
-      displacement_current = false;
     }
   }
   for (double& p : sol.pressure) p = std::max(0.0, p);
@@ -564,8 +625,7 @@ WRC_GRID_PASS bool StartPressure(const ActiveSetProblem& pb, const NormalOptions
 // approach (h < δ), as A·p >= 0 keeps every other gap open; under force control, whose approach
 // is unknown, all. Kept as one stretch per row, so that the passes of an iteration skip the
 // rest of the box (on the combined heavy-haul patches, two thirds of it or more).
-WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, NormalWorkspace& ws,
-                                NormalSolution& sol) {
+WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, Scratch& ws, NormalSolution& sol) {
   const std::size_t n = pb.n;
   ws.segments.clear();
   const std::size_t nx = static_cast<std::size_t>(pb.op.grid().nx);
@@ -595,8 +655,7 @@ WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, NormalWorkspace& ws,
 // u = A·p afresh when the carried one is not valid or due for a refresh; after the Hertz start
 // also its scale c = argmin ½c²·pᵀAp − c·pᵀ(δ − h), for p and A·p alike.
 WRC_GRID_PASS void RefreshDisplacement(const ActiveSetProblem& pb, bool scale_hertz_start,
-                                       ActiveSetState& state, NormalWorkspace& ws,
-                                       NormalSolution& sol) {
+                                       ActiveSetState& state, Scratch& ws, NormalSolution& sol) {
   if (state.displacement_valid && state.since_refresh < kRefreshIterations) {
     ++state.since_refresh;
     return;
@@ -623,8 +682,7 @@ struct GapSums {
 
 // The gap g = u + h − δ (δ = 0 under force control) on the segments, the residual (g on the
 // contact, 0 elsewhere) and the sums of g and g² over the contact.
-WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, NormalWorkspace& ws,
-                              const NormalSolution& sol) {
+WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, Scratch& ws, const NormalSolution& sol) {
   const double approach_shift = pb.force_control ? 0.0 : pb.load.value;
   GapSums sums;
   for (const auto& [begin, end] : ws.segments) {
@@ -647,8 +705,7 @@ WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, NormalWorkspace& ws,
 // gap and residual, in a pass of its own, since Σg² − n·mean² would cancel (the gaps sit near
 // the approach and differ from it by far less). Returns |r|².
 WRC_GRID_PASS double CentreGap(const ActiveSetProblem& pb, const GapSums& sums,
-                               ActiveSetState& state, NormalWorkspace& ws,
-                               const NormalSolution& sol) {
+                               ActiveSetState& state, Scratch& ws, const NormalSolution& sol) {
   if (!pb.force_control) return sums.sum_of_squares;
   state.mean_gap = sums.sum / sums.n_active;
   double norm = 0.0;
@@ -663,8 +720,7 @@ WRC_GRID_PASS double CentreGap(const ActiveSetProblem& pb, const GapSums& sums,
 
 // z = M·r (or r), centred like r under force control; returns r·z for β.
 WRC_GRID_PASS double Precondition(const ActiveSetProblem& pb, int n_active, double residual_norm,
-                                  NormalWorkspace& ws, const NormalSolution& sol,
-                                  const double** z) {
+                                  Scratch& ws, const NormalSolution& sol, const double** z) {
   *z = ws.residual.data();
   if (!pb.stencil) return residual_norm;
   ApplyLocalInverse(*pb.stencil, pb.op.grid(), ws.segments, ws.residual.data(), sol.pressure.data(),
@@ -686,7 +742,7 @@ WRC_GRID_PASS double Precondition(const ActiveSetProblem& pb, int n_active, doub
 }
 
 // d ← z + β·d on the contact, zero elsewhere (and off the segments, where it stays zero).
-WRC_GRID_PASS void UpdateDirection(const double* z, double beta, NormalWorkspace& ws,
+WRC_GRID_PASS void UpdateDirection(const double* z, double beta, Scratch& ws,
                                    const NormalSolution& sol) {
   for (const auto& [begin, end] : ws.segments) {
     for (std::size_t i = begin; i < end; ++i) {
@@ -697,7 +753,7 @@ WRC_GRID_PASS void UpdateDirection(const double* z, double beta, NormalWorkspace
 
 // τ = r·d / (A·d)·d over the contact, with r and A·d centred under force control:
 // den = Σ (w − mean w)·d = Σ w·d − mean w·Σ d.
-WRC_GRID_PASS double StepLength(const ActiveSetProblem& pb, int n_active, const NormalWorkspace& ws,
+WRC_GRID_PASS double StepLength(const ActiveSetProblem& pb, int n_active, const Scratch& ws,
                                 const NormalSolution& sol) {
   double num = 0.0, rd = 0.0, sum_response = 0.0, sum_direction = 0.0;
   for (const auto& [begin, end] : ws.segments) {
@@ -723,7 +779,7 @@ struct StepSums {
 // p ← max(0, p − τ·d) on the contact, and p = max(0, −τ·g) where the gap is negative outside
 // it; the elements clipped or re-activated go to ws.corrected with the pressure they got
 // beyond the plain step, and u follows the plain step: u −= τ·A·d.
-WRC_GRID_PASS StepSums ProjectedStep(const ActiveSetProblem& pb, double tau, NormalWorkspace& ws,
+WRC_GRID_PASS StepSums ProjectedStep(const ActiveSetProblem& pb, double tau, Scratch& ws,
                                      NormalSolution& sol) {
   StepSums step;
   ws.corrected.clear();
@@ -759,8 +815,8 @@ WRC_GRID_PASS StepSums ProjectedStep(const ActiveSetProblem& pb, double tau, Nor
 
 // Under force control the total force is re-imposed after each step (the change then counts
 // against the pressures before the step, ws.previous). Returns the scale applied.
-WRC_GRID_PASS double ReimposeForce(const ActiveSetProblem& pb, StepSums& step,
-                                   const NormalWorkspace& ws, NormalSolution& sol) {
+WRC_GRID_PASS double ReimposeForce(const ActiveSetProblem& pb, StepSums& step, const Scratch& ws,
+                                   NormalSolution& sol) {
   if (!pb.force_control || !(step.sum > 0.0)) return 1.0;
   const double scale = pb.load.value / (pb.area * step.sum);
   for (double& p : sol.pressure) p *= scale;
@@ -773,7 +829,7 @@ WRC_GRID_PASS double ReimposeForce(const ActiveSetProblem& pb, StepSums& step,
 // u += A·c for the corrections of the step, then u ← s·u; or u invalid when the corrections
 // are too many to add column by column (the next iteration makes a product).
 WRC_GRID_PASS void CarryDisplacement(const ActiveSetProblem& pb, double scale,
-                                     ActiveSetState& state, NormalWorkspace& ws) {
+                                     ActiveSetState& state, Scratch& ws) {
   state.displacement_valid = ws.corrected.size() <= kMaxDirectColumns;
   if (!state.displacement_valid) return;
   for (std::size_t c = 0; c < ws.corrected.size(); ++c) {
@@ -786,7 +842,7 @@ WRC_GRID_PASS void CarryDisplacement(const ActiveSetProblem& pb, double scale,
 
 // Everything lifted off (only possible under approach control when the initial guess
 // overshot): restart from the interpenetration.
-WRC_GRID_PASS void RestartFromInterpenetration(ActiveSetState& state, NormalWorkspace& ws,
+WRC_GRID_PASS void RestartFromInterpenetration(ActiveSetState& state, Scratch& ws,
                                                NormalSolution& sol) {
   for (const auto& [begin, end] : ws.segments) {
     for (std::size_t i = begin; i < end; ++i) sol.pressure[i] = std::max(0.0, -ws.gap[i]);
@@ -800,9 +856,8 @@ enum class StepOutcome { kContinue, kRestarted, kConverged };
 // One iteration: gap, preconditioned residual, conjugate direction, its response, the
 // projected step and the carried displacement.
 WRC_GRID_PASS StepOutcome ActiveSetStep(const ActiveSetProblem& pb, const NormalOptions& options,
-                                        bool scale_hertz_start, ActiveSetState& state,
-                                        NormalWorkspace& ws, NormalSolution& sol,
-                                        NormalSummary& summary) {
+                                        bool scale_hertz_start, ActiveSetState& state, Scratch& ws,
+                                        NormalSolution& sol, NormalSummary& summary) {
   RefreshDisplacement(pb, scale_hertz_start, state, ws, sol);
   const GapSums gaps = GapPass(pb, ws, sol);
   if (gaps.n_active == 0) {
@@ -838,7 +893,7 @@ bool DeflationDue(const ActiveSetProblem& pb, const NormalOptions& options,
 // The approach: prescribed, or under force control the mean gap over the final contact area.
 // `displacement` is A·p, or nullptr (then made into ws.gap).
 double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState& state,
-                     const std::vector<double>** displacement, NormalWorkspace& ws,
+                     const std::vector<double>** displacement, Scratch& ws,
                      const NormalSolution& sol) {
   if (!pb.force_control) return pb.load.value;
   if (!*displacement) {
@@ -858,7 +913,7 @@ double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState& state,
 }
 
 void SizeWorkspace(const FftInfluenceOperator& op, std::size_t n, bool preconditioned,
-                   NormalWorkspace& ws) {
+                   Scratch& ws) {
   ws.gap.resize(n);
   ws.direction.assign(n, 0.0);
   ws.response.resize(n);
@@ -891,8 +946,9 @@ void SizeWorkspace(const FftInfluenceOperator& op, std::size_t n, bool precondit
 // give the same results).
 WRC_CLONE_FOR_AVX2
 NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
-                          const NormalLoad& load, const NormalOptions& options, NormalWorkspace& ws,
-                          NormalSolution& sol) {
+                          const NormalLoad& load, const NormalOptions& options,
+                          NormalWorkspace& workspace, NormalSolution& sol) {
+  Scratch& ws = workspace.scratch();
   Validate(op, h, load);
   const std::size_t n = h.size();
   const bool force_control = load.kind == NormalLoad::Kind::kForce;

@@ -4,7 +4,7 @@
 /// distance e = h + A·p >= 0 and p·e = 0, for prescribed approach or prescribed total force.
 
 #include <cstddef>
-#include <utility>
+#include <memory>
 #include <vector>
 
 #include "wrc/influence_operator.h"
@@ -60,21 +60,19 @@ struct NormalSummary {
   double residual = 0.0;  ///< Last relative pressure change.
 };
 
-/// Scratch memory for SolveNormal, caller-owned so that repeated solves do not allocate.
-struct NormalWorkspace {
-  ConvolutionWorkspace convolution;
-  std::vector<double> gap, direction, response, previous, displacement;
-  std::vector<double> residual;        ///< the gap on the contact, zero elsewhere
-  std::vector<double> preconditioned;  ///< the residual after the preconditioner
-  std::vector<double> column_sums;     ///< one grid row (+2): residual above + below
-  /// The elements that can carry pressure, one [begin, end) stretch per grid row.
-  std::vector<std::pair<std::size_t, std::size_t>> segments;
-  /// The deflated phase: the contact set, A·Z on it (column-major), its vectors on the set
-  /// (w: A·d), and the set as a 0/1 mask of the grid.
-  std::vector<std::size_t> contact;
-  std::vector<double> coarse_response, x, r, z, d, w, mask;
-  std::vector<std::size_t> corrected;  ///< elements clipped or re-activated in one step
-  std::vector<double> correction;      ///< their pressure minus the unclipped step
+/// Scratch memory for SolveNormal, caller-owned so that repeated solves on grids of the same
+/// size do not allocate. What it holds is the solver's own (opaque); move-only.
+class NormalWorkspace {
+ public:
+  NormalWorkspace();
+  ~NormalWorkspace();
+  NormalWorkspace(NormalWorkspace&&) noexcept;
+  NormalWorkspace& operator=(NormalWorkspace&&) noexcept;
+  struct Scratch;  ///< Defined by the solver.
+  Scratch& scratch() { return *scratch_; }
+
+ private:
+  std::unique_ptr<Scratch> scratch_;
 };
 
 /// Solves the normal problem for undeformed distance `h` (excluding the approach: the gap is
