@@ -4,7 +4,6 @@
 /// tractions p_t on the contact area with actual slip s = w + (u − u')/δq, |p_t| <= μ·p_n,
 /// s = 0 where |p_t| < μ·p_n (adhesion) and p_t = −μ·p_n·s/|s| where it slips.
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -91,17 +90,19 @@ struct TangentialSummary {
   double residual = 0.0;
 };
 
-/// Caller-owned scratch memory.
-struct TangentialWorkspace {
-  ConvolutionWorkspace convolution;
-  std::vector<double> px_ext, py_ext, ux_ext, uy_ext, sx_box, sy_box;
-  std::vector<int> offsets;                  ///< one row's updates: offsets of their kernels
-  std::vector<double> amounts_x, amounts_y;  ///< and their traction changes / δq
-  /// A sweep's updates for the rows swept before theirs, applied when the next sweep starts:
-  /// the row, and the range of its updates in deferred_offsets/_x/_y.
-  std::vector<std::array<int, 3>> deferred_rows;
-  std::vector<int> deferred_offsets;
-  std::vector<double> deferred_x, deferred_y;
+/// Scratch memory for SolveTangential, caller-owned so that repeated solves reuse it. What it
+/// holds is the solver's own (opaque); move-only.
+class TangentialWorkspace {
+ public:
+  TangentialWorkspace();
+  ~TangentialWorkspace();
+  TangentialWorkspace(TangentialWorkspace&&) noexcept;
+  TangentialWorkspace& operator=(TangentialWorkspace&&) noexcept;
+  struct Scratch;  ///< Defined by the solver.
+  Scratch& scratch() { return *scratch_; }
+
+ private:
+  std::unique_ptr<Scratch> scratch_;
 };
 
 /// Solves the steady-rolling problem for identical (quasi-identical) materials; the normal
