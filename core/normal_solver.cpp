@@ -147,19 +147,6 @@ void AddColumn(const InfluenceCoefficients& columns, const Grid& grid, std::size
 // product costs 25–40 ns per element of the box, a column ~0.5).
 constexpr std::size_t kMaxDirectColumns = 48;
 
-// The last phase of a solve under approach control, once the contact set C has stopped
-// changing: A_CC·p = δ − h on C is then linear, and deflated PCG (A-DEF2 in Tang, Nabben, Vuik &
-// Erlangga 2009, J. Sci. Comput. 39) solves it in about half the iterations the active-set
-// method takes from there. The smooth modes of a large contact are what a local preconditioner
-// leaves slow; Z holds them as the indicator vectors of kBlock × kBlock blocks of C, and A·Z
-// comes from row prefix sums of the influence coefficients (two per block row and target), so
-// that no product per block is needed. Should the solution leave p < 0 on C or a negative gap
-// off it, C drops and takes those elements and is solved again (a primal–dual active-set step,
-// as in semismooth Newton methods), up to kRounds times. Measured on heavy haul: 22/27/29
-// products become 17/20/22, and the pressures end 100× closer to the exact solution (the
-// stopping rule is the same relative change of the pressures). Expects ws.displacement = A·p;
-// returns whether it converged, and otherwise leaves p >= 0 (the caller resumes) with the
-// displacement no longer A·p.
 // Row prefix sums of the coefficients: prefix[dj][d + nx] = Σ_{d' <= d} A(d', dj), with
 // prefix[dj][0] = 0 for d = −nx, so that a run of sources lo..hi adds P(i − lo) − P(i − hi − 1)
 // at column i of a row dj away. Rows of 2·nx values, dj from −(ny − 1).
@@ -509,6 +496,19 @@ bool UpdateContactSet(const InfluenceCoefficients& columns, const Grid& grid,
   return false;
 }
 
+// The last phase of a solve under approach control, once the contact set C has stopped
+// changing: A_CC·p = δ − h on C is then linear, and deflated PCG (A-DEF2 in Tang, Nabben, Vuik &
+// Erlangga 2009, J. Sci. Comput. 39) solves it in about half the iterations the active-set
+// method takes from there. The smooth modes of a large contact are what a local preconditioner
+// leaves slow; Z holds them as the indicator vectors of kDeflationBlock × kDeflationBlock blocks of
+// C, and A·Z comes from row prefix sums of the influence coefficients (two per block row and
+// target), so that no product per block is needed. Should the solution leave p < 0 on C or a
+// negative gap off it, C drops and takes those elements and is solved again (a primal–dual
+// active-set step, as in semismooth Newton methods), up to kDeflationRounds times. Measured on
+// heavy haul: 22/27/29 products become 17/20/22, and the pressures end 100× closer to the exact
+// solution (the stopping rule is the same relative change of the pressures). Expects
+// ws.displacement = A·p; returns whether it converged, and otherwise leaves p >= 0 (the caller
+// resumes) with the displacement no longer A·p.
 DeflationOutcome SolveOnContactSet(const FftInfluenceOperator& op,
                                    const InfluenceCoefficients& columns,
                                    const std::vector<double>& h, double approach,

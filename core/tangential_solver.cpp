@@ -369,8 +369,8 @@ bool StartTractions(const Grid& g, const TangentialProblem& pb, const Tangential
   ws.py_ext.assign(ne, 0.0);
   ws.ux_ext.resize(ne);
   ws.uy_ext.resize(ne);
-  bool tractions_zero = true;
   if (!options.warm_start || sol.px.size() != n || sol.py.size() != n) return true;
+  bool tractions_zero = true;
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const std::size_t I = g.index(i, j);

@@ -62,13 +62,19 @@ TEST(Pcg, SolvesASymmetricPositiveDefiniteSystem) {
   for (int i = 0; i < n; ++i) EXPECT_NEAR(s.r[i], r(i), 1e-9 * b.norm());
 }
 
-TEST(Pcg, StopsAtTheIterationBudget) {
-  const int n = 40;
-  DenseOperator op(n);
+// x = 0 and r = b = (1, …, 1).
+PcgScratch StartAtZero(int n) {
   PcgScratch s;
   s.Resize(n);
   std::fill(s.x.begin(), s.x.end(), 0.0);
   std::fill(s.r.begin(), s.r.end(), 1.0);
+  return s;
+}
+
+TEST(Pcg, StopsAtTheIterationBudget) {
+  const int n = 40;
+  DenseOperator op(n);
+  PcgScratch s = StartAtZero(n);
   const PcgOutcome outcome = SolvePcg(op, 1e-30, 3, s);
   EXPECT_FALSE(outcome.converged);
   EXPECT_EQ(outcome.iterations, 3);
@@ -77,10 +83,7 @@ TEST(Pcg, StopsAtTheIterationBudget) {
 
 TEST(Pcg, NoBudgetMakesNoProduct) {
   DenseOperator op(5);
-  PcgScratch s;
-  s.Resize(5);
-  std::fill(s.x.begin(), s.x.end(), 0.0);
-  std::fill(s.r.begin(), s.r.end(), 1.0);
+  PcgScratch s = StartAtZero(5);
   const PcgOutcome outcome = SolvePcg(op, 1e-8, 0, s);
   EXPECT_FALSE(outcome.converged);
   EXPECT_EQ(outcome.iterations, 0);
