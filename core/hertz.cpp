@@ -60,8 +60,10 @@ double AxisRatioFor(double ratio) {
   options.rel_tolerance = 1e-13;
   const gsl::RootResult root =
       gsl::FindRootBrent([ratio](double s) { return CurvatureRatio(s) - ratio; }, lo, 1.0, options);
+  // CurvatureRatio is monotone on the bracket [lo, 1] and changes sign there, so Brent's method
+  // always converges within its iteration budget: failing to is a bug, not a numerical outcome.
   if (!root.converged) {
-    throw std::runtime_error("HertzContact: eccentricity iteration did not converge");
+    throw std::logic_error("HertzContact: Brent's method failed on a bracketed monotone root");
   }
   return root.root;
 }

@@ -157,23 +157,89 @@ struct SimpackSetting {
   int line = 0;
 };
 
-ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::string>& lines) {
-  ProfilePoints result;
-  result.format = ProfileFormat::kSimpack;
-  result.source = path;
-  std::map<std::string, SimpackSetting> header;
-  std::map<std::string, SimpackSetting> settings;  // spline block
-  std::vector<double> weights;
+// The settings of one Simpack block (header or spline), read by key.
+class SimpackSettings {
+ public:
+  explicit SimpackSettings(const std::string& path) : path_(path) {}
+  void Set(const std::string& key, SimpackSetting setting) { map_[key] = std::move(setting); }
+  bool Has(const std::string& key) const { return map_.count(key) != 0; }
+  const std::string& Text(const std::string& key) const { return map_.at(key).value; }
+  /// The line of `key`, 0 when the file does not have it.
+  int LineOf(const std::string& key) const {
+    const auto it = map_.find(key);
+    return it == map_.end() ? 0 : it->second.line;
+  }
+  /// The numeric value of `key`, or `fallback` when the file does not have it.
+  double Number(const std::string& key, double fallback) const {
+    const auto it = map_.find(key);
+    if (it == map_.end()) return fallback;
+    const std::optional<double> value = ParseNumber(it->second.value);
+    if (!value || !std::isfinite(*value)) {
+      throw InputError(
+          At(path_, it->second.line, key + " = '" + it->second.value + "' is not a finite number"));
+    }
+    return *value;
+  }
 
-  enum class Block { kNone, kHeader, kSpline, kPoints };
-  Block block = Block::kNone;
+ private:
+  const std::string& path_;
+  std::map<std::string, SimpackSetting> map_;
+};
+
+// What the block reader collects from a Simpack file.
+struct SimpackFile {
+  ProfilePoints points;
+  SimpackSettings header, settings;  // settings: the spline block's
+  std::vector<double> weights;
   int point_block_line = 0;
-  bool seen_point_block = false;
-  bool warned_extra_columns = false;
+  explicit SimpackFile(const std::string& path) : header(path), settings(path) {}
+};
+
+// One line of the point block: y z [weight].
+class SimpackPointReader {
+ public:
+  void Read(const std::string& path, int line_number, std::string_view text, SimpackFile& file) {
+    SplitInto(text, " \t\f\v,", tokens_);
+    values_.clear();
+    for (const std::string_view token : tokens_) {
+      const std::optional<double> value = ParseNumber(token);
+      if (!value) {
+        throw InputError(At(path, line_number,
+                            "'" + std::string(token) + "' is not a number (in " + Quote(text) +
+                                ", expected 'y z [weight]')"));
+      }
+      values_.push_back(*value);
+    }
+    if (values_.size() < 2) {
+      throw InputError(At(path, line_number, "expected 'y z [weight]' but found " + Quote(text)));
+    }
+    RequireFinite(path, line_number, tokens_, values_);
+    if (values_.size() > 3 && !warned_extra_columns_) {
+      file.points.warnings.push_back(
+          At(path, line_number, "columns after 'y z weight' are ignored"));
+      warned_extra_columns_ = true;
+    }
+    file.points.y.push_back(values_[0]);
+    file.points.z.push_back(values_[1]);
+    file.points.lines.push_back(line_number);
+    file.weights.push_back(values_.size() >= 3 ? values_[2] : 1.0);
+  }
+
+ private:
   // Reused across the lines: a profile has hundreds of point lines, and allocating per line was
   // most of reading one.
-  std::vector<std::string_view> tokens;
-  std::vector<double> values;
+  std::vector<std::string_view> tokens_;
+  std::vector<double> values_;
+  bool warned_extra_columns_ = false;
+};
+
+// The header, spline and point blocks of a Simpack file, as they are written.
+void ReadSimpackBlocks(const std::string& path, const std::vector<std::string>& lines,
+                       SimpackFile& file) {
+  enum class Block { kNone, kHeader, kSpline, kPoints };
+  Block block = Block::kNone;
+  bool seen_point_block = false;
+  SimpackPointReader point_reader;
   for (std::size_t index = 0; index < lines.size(); ++index) {
     const int line_number = static_cast<int>(index) + 1;
     const std::string_view text = Trim(StripSimpackComment(lines[index]));
@@ -187,7 +253,7 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
       block = Block::kSpline;
     } else if (keyword == "point.begin") {
       block = Block::kPoints;
-      point_block_line = line_number;
+      file.point_block_line = line_number;
       seen_point_block = true;
     } else if (keyword == "point.end") {
       if (block != Block::kPoints) {
@@ -201,179 +267,177 @@ ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::strin
       }
       block = Block::kNone;
     } else if (block == Block::kPoints) {
-      SplitInto(text, " \t\f\v,", tokens);
-      values.clear();
-      for (const std::string_view token : tokens) {
-        const std::optional<double> value = ParseNumber(token);
-        if (!value) {
-          throw InputError(At(path, line_number,
-                              "'" + std::string(token) + "' is not a number (in " + Quote(text) +
-                                  ", expected 'y z [weight]')"));
-        }
-        values.push_back(*value);
-      }
-      if (values.size() < 2) {
-        throw InputError(At(path, line_number, "expected 'y z [weight]' but found " + Quote(text)));
-      }
-      RequireFinite(path, line_number, tokens, values);
-      if (values.size() > 3 && !warned_extra_columns) {
-        result.warnings.push_back(At(path, line_number, "columns after 'y z weight' are ignored"));
-        warned_extra_columns = true;
-      }
-      result.y.push_back(values[0]);
-      result.z.push_back(values[1]);
-      result.lines.push_back(line_number);
-      weights.push_back(values.size() >= 3 ? values[2] : 1.0);
+      point_reader.Read(path, line_number, text, file);
     } else if (block == Block::kHeader || block == Block::kSpline) {
       const std::size_t equals = text.find('=');
       if (equals == std::string_view::npos) {
-        result.warnings.push_back(At(path, line_number, "ignored line " + Quote(text)));
+        file.points.warnings.push_back(At(path, line_number, "ignored line " + Quote(text)));
         continue;
       }
       SimpackSetting setting{std::string(Trim(text.substr(equals + 1))), line_number};
-      auto& target = block == Block::kHeader ? header : settings;
-      target[Lower(Trim(text.substr(0, equals)))] = setting;
+      auto& target = block == Block::kHeader ? file.header : file.settings;
+      target.Set(Lower(Trim(text.substr(0, equals))), setting);
     } else {
-      result.warnings.push_back(
+      file.points.warnings.push_back(
           At(path, line_number, "ignored line outside the Simpack blocks: " + Quote(text)));
     }
   }
   if (block == Block::kPoints) {
     throw InputError(At(path, static_cast<int>(lines.size()),
                         "file ends inside the point block opened at line " +
-                            std::to_string(point_block_line) + " (missing point.end)"));
+                            std::to_string(file.point_block_line) + " (missing point.end)"));
   }
   if (!seen_point_block) {
     throw InputError(At(path, static_cast<int>(lines.size()),
                         "no point.begin ... point.end block: not a Simpack profile"));
   }
+}
 
-  // A setting's numeric value, or `fallback` when the file does not have it.
-  const auto number = [&path](const std::map<std::string, SimpackSetting>& map,
-                              const std::string& key, double fallback) {
-    const auto it = map.find(key);
-    if (it == map.end()) return fallback;
-    const std::optional<double> value = ParseNumber(it->second.value);
-    if (!value || !std::isfinite(*value)) {
-      throw InputError(
-          At(path, it->second.line, key + " = '" + it->second.value + "' is not a finite number"));
-    }
-    return *value;
-  };
-  const auto line_of = [](const std::map<std::string, SimpackSetting>& map,
-                          const std::string& key) {
-    const auto it = map.find(key);
-    return it == map.end() ? 0 : it->second.line;
-  };
-
-  if (header.count("type") != 0) {
-    const double type = number(header, "type", 0.0);
+// The header's profile type, and what wrc reads but does not apply.
+void ReadSimpackDeclarations(const std::string& path, SimpackFile& file) {
+  ProfilePoints& result = file.points;
+  if (file.header.Has("type")) {
+    const double type = file.header.Number("type", 0.0);
     if (type == 0.0) result.declared_kind = ProfileKind::kRail;
     if (type == 1.0) result.declared_kind = ProfileKind::kWheel;
   }
-  if (number(settings, "approx.smooth", 0.0) != 0.0) {
-    result.warnings.push_back(At(path, line_of(settings, "approx.smooth"),
+  if (file.settings.Number("approx.smooth", 0.0) != 0.0) {
+    result.warnings.push_back(At(path, file.settings.LineOf("approx.smooth"),
                                  "Simpack approx.smooth is ignored (as in CONTACT); use the "
                                  "smoothing option instead"));
   }
-  if (std::any_of(weights.begin(), weights.end(), [](double w) { return w != 1.0; })) {
-    result.warnings.push_back(At(path, point_block_line, "point weights are ignored"));
+  if (std::any_of(file.weights.begin(), file.weights.end(), [](double w) { return w != 1.0; })) {
+    result.warnings.push_back(At(path, file.point_block_line, "point weights are ignored"));
   }
+}
 
-  // Simpack's own processing steps, in the order its numbered comments give (1 to 7).
-  std::vector<double>& y = result.y;
-  std::vector<double>& z = result.z;
-  std::vector<int>& line_numbers = result.lines;
-  const auto keep_if = [&](auto predicate) {
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < y.size(); ++i) {
-      if (!predicate(i, kept)) continue;
-      y[kept] = y[i];
-      z[kept] = z[i];
-      line_numbers[kept] = line_numbers[i];
-      ++kept;
-    }
-    const std::size_t dropped = y.size() - kept;
-    y.resize(kept);
-    z.resize(kept);
-    line_numbers.resize(kept);
-    return dropped;
-  };
-  // 1: point.dist.min drops points closer than that to the previously kept point.
-  const double min_distance = number(settings, "point.dist.min", 0.0);
+// Keeps the points (with their lines) for which predicate(i, kept) holds, in order; returns
+// how many were dropped.
+template <class Predicate>
+std::size_t KeepIf(ProfilePoints& p, Predicate predicate) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < p.y.size(); ++i) {
+    if (!predicate(i, kept)) continue;
+    p.y[kept] = p.y[i];
+    p.z[kept] = p.z[i];
+    p.lines[kept] = p.lines[i];
+    ++kept;
+  }
+  const std::size_t dropped = p.y.size() - kept;
+  p.y.resize(kept);
+  p.z.resize(kept);
+  p.lines.resize(kept);
+  return dropped;
+}
+
+// Steps 1 and 2 of Simpack's processing: point.dist.min drops points closer than that to the
+// previously kept point; then the shift.
+void ApplySimpackSpacingAndShift(const std::string& path, SimpackFile& file) {
+  ProfilePoints& p = file.points;
+  const SimpackSettings& settings = file.settings;
+  const double min_distance = settings.Number("point.dist.min", 0.0);
   if (min_distance > 0.0) {
-    const std::size_t dropped = keep_if([&](std::size_t i, std::size_t kept) {
-      return kept == 0 || std::hypot(y[i] - y[kept - 1], z[i] - z[kept - 1]) >= min_distance;
+    const std::size_t dropped = KeepIf(p, [&](std::size_t i, std::size_t kept) {
+      return kept == 0 ||
+             std::hypot(p.y[i] - p.y[kept - 1], p.z[i] - p.z[kept - 1]) >= min_distance;
     });
     if (dropped > 0) {
-      result.warnings.push_back(At(path, line_of(settings, "point.dist.min"),
-                                   std::to_string(dropped) + " points dropped by point.dist.min"));
+      p.warnings.push_back(At(path, settings.LineOf("point.dist.min"),
+                              std::to_string(dropped) + " points dropped by point.dist.min"));
     }
   }
-  // 2: shift.
-  const double shift_y = number(settings, "shift.y", 0.0);
-  const double shift_z = number(settings, "shift.z", 0.0);
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    y[i] += shift_y;
-    z[i] += shift_z;
+  const double shift_y = settings.Number("shift.y", 0.0);
+  const double shift_z = settings.Number("shift.z", 0.0);
+  for (std::size_t i = 0; i < p.y.size(); ++i) {
+    p.y[i] += shift_y;
+    p.z[i] += shift_z;
   }
-  // 3: rotate. Its sign convention is not documented well enough to apply it safely.
-  if (number(settings, "rotate", 0.0) != 0.0) {
-    throw InputError(At(path, line_of(settings, "rotate"),
-                        "rotate = '" + settings.at("rotate").value +
+}
+
+// Steps 3 and 4: rotation (refused: its sign convention is not documented well enough to apply
+// it safely) and bounds (a pair with min >= max, as Simpack writes min = 1, max = 0, means no
+// bound).
+void ApplySimpackRotationAndBounds(const std::string& path, SimpackFile& file) {
+  ProfilePoints& p = file.points;
+  const SimpackSettings& settings = file.settings;
+  if (settings.Number("rotate", 0.0) != 0.0) {
+    throw InputError(At(path, settings.LineOf("rotate"),
+                        "rotate = '" + settings.Text("rotate") +
                             "': a non-zero Simpack 'rotate' is not supported; rotate the points "
                             "in the file instead"));
   }
-  // 4: bounds; a pair with min >= max (Simpack writes min = 1, max = 0) means no bound.
-  const double y_min = number(settings, "bound.y.min", 1.0);
-  const double y_max = number(settings, "bound.y.max", 0.0);
-  const double z_min = number(settings, "bound.z.min", 1.0);
-  const double z_max = number(settings, "bound.z.max", 0.0);
+  const double y_min = settings.Number("bound.y.min", 1.0);
+  const double y_max = settings.Number("bound.y.max", 0.0);
+  const double z_min = settings.Number("bound.z.min", 1.0);
+  const double z_max = settings.Number("bound.z.max", 0.0);
   if (y_min < y_max || z_min < z_max) {
-    const std::size_t dropped = keep_if([&](std::size_t i, std::size_t) {
-      return (y_min >= y_max || (y[i] >= y_min && y[i] <= y_max)) &&
-             (z_min >= z_max || (z[i] >= z_min && z[i] <= z_max));
+    const std::size_t dropped = KeepIf(p, [&](std::size_t i, std::size_t) {
+      return (y_min >= y_max || (p.y[i] >= y_min && p.y[i] <= y_max)) &&
+             (z_min >= z_max || (p.z[i] >= z_min && p.z[i] <= z_max));
     });
     if (dropped > 0) {
-      result.warnings.push_back(
-          At(path, point_block_line,
+      p.warnings.push_back(
+          At(path, file.point_block_line,
              std::to_string(dropped) + " points outside the Simpack bounds dropped"));
     }
   }
-  // 5: mirroring.
-  if (number(settings, "mirror.y", 0.0) != 0.0) {
-    for (double& value : y) value = -value;
-    result.mirrored_y = true;
+}
+
+// Steps 5 and 6: mirroring and inversion of the point order.
+void ApplySimpackMirrorAndInversion(SimpackFile& file) {
+  ProfilePoints& p = file.points;
+  const SimpackSettings& settings = file.settings;
+  if (settings.Number("mirror.y", 0.0) != 0.0) {
+    for (double& value : p.y) value = -value;
+    p.mirrored_y = true;
   }
-  if (number(settings, "mirror.z", 0.0) != 0.0) {
-    for (double& value : z) value = -value;
-    result.mirrored_z = true;
+  if (settings.Number("mirror.z", 0.0) != 0.0) {
+    for (double& value : p.z) value = -value;
+    p.mirrored_z = true;
   }
-  // 6: inversion of the point order.
-  if (number(settings, "inversion", 0.0) != 0.0) {
-    std::reverse(y.begin(), y.end());
-    std::reverse(z.begin(), z.end());
-    std::reverse(line_numbers.begin(), line_numbers.end());
+  if (settings.Number("inversion", 0.0) != 0.0) {
+    std::reverse(p.y.begin(), p.y.end());
+    std::reverse(p.z.begin(), p.z.end());
+    std::reverse(p.lines.begin(), p.lines.end());
   }
-  // 7: units.len.f is "length unit per metre": 1000 means the numbers are in mm.
-  if (settings.count("units.len.f") == 0) {
-    result.warnings.push_back(At(path, point_block_line, "no units.len.f; assuming mm"));
-  } else {
-    const double unit_per_metre = number(settings, "units.len.f", 1000.0);
-    if (unit_per_metre <= 0.0) {
-      throw InputError(At(path, line_of(settings, "units.len.f"),
-                          "units.len.f = '" + settings.at("units.len.f").value +
-                              "' must be positive (length units per metre, 1000 for mm)"));
+}
+
+// Step 7: units.len.f is "length unit per metre": 1000 means the numbers are in mm.
+void ApplySimpackUnits(const std::string& path, SimpackFile& file) {
+  ProfilePoints& p = file.points;
+  const SimpackSettings& settings = file.settings;
+  if (!settings.Has("units.len.f")) {
+    p.warnings.push_back(At(path, file.point_block_line, "no units.len.f; assuming mm"));
+    return;
+  }
+  const double unit_per_metre = settings.Number("units.len.f", 1000.0);
+  if (unit_per_metre <= 0.0) {
+    throw InputError(At(path, settings.LineOf("units.len.f"),
+                        "units.len.f = '" + settings.Text("units.len.f") +
+                            "' must be positive (length units per metre, 1000 for mm)"));
+  }
+  const double to_mm = 1000.0 / unit_per_metre;
+  if (to_mm != 1.0) {
+    for (std::size_t i = 0; i < p.y.size(); ++i) {
+      p.y[i] *= to_mm;
+      p.z[i] *= to_mm;
     }
-    const double to_mm = 1000.0 / unit_per_metre;
-    if (to_mm != 1.0) {
-      for (std::size_t i = 0; i < y.size(); ++i) {
-        y[i] *= to_mm;
-        z[i] *= to_mm;
-      }
-    }
   }
-  return result;
+}
+
+// The blocks as written, then Simpack's own processing steps in the order its numbered
+// comments give (1 to 7).
+ProfilePoints ParseSimpack(const std::string& path, const std::vector<std::string>& lines) {
+  SimpackFile file(path);
+  file.points.format = ProfileFormat::kSimpack;
+  file.points.source = path;
+  ReadSimpackBlocks(path, lines, file);
+  ReadSimpackDeclarations(path, file);
+  ApplySimpackSpacingAndShift(path, file);
+  ApplySimpackRotationAndBounds(path, file);
+  ApplySimpackMirrorAndInversion(file);
+  ApplySimpackUnits(path, file);
+  return std::move(file.points);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -380,16 +380,8 @@ void RequireEnoughPoints(const std::vector<Point>& points, const std::string& so
                           "; a profile needs at least " + std::to_string(kMinPoints)));
 }
 
-}  // namespace
-
-double Profile::PolylineLength() const {
-  double length = 0.0;
-  for (std::size_t i = 1; i < y.size(); ++i) length += std::hypot(y[i] - y[i - 1], z[i] - z[i - 1]);
-  return length;
-}
-
-Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOptions& options) {
-  const std::string& source = input.source;
+// The options a repair reads, checked before any point is looked at.
+void ValidateRepairOptions(const ProfileOptions& options, const std::string& source) {
   if (!(options.zigzag_threshold_deg > 45.0 && options.zigzag_threshold_deg <= 180.0)) {
     throw InputError(source + ": zig-zag threshold " + FormatNumber(options.zigzag_threshold_deg) +
                      "° outside (45°, 180°]");
@@ -414,30 +406,26 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     throw InputError(source + ": scale_yz " + FormatNumber(options.scale_yz) +
                      " must be a finite number > 0");
   }
+}
+
+// The input's points, each with its line, refused where a coordinate is not finite.
+std::vector<Point> FinitePoints(const ProfilePoints& input) {
   if (input.y.size() != input.z.size() || input.y.size() != input.lines.size()) {
-    throw InputError(source + ": y, z and line arrays differ in size");
+    throw InputError(input.source + ": y, z and line arrays differ in size");
   }
-
-  Profile profile;
-  profile.kind = kind;
-  profile.format = input.format;
-  profile.source = source;
-  profile.mirrored_y = input.mirrored_y;
-  profile.mirrored_z = input.mirrored_z;
-  profile.warnings = std::move(input.warnings);
-  std::vector<std::string>& warnings = profile.warnings;
-
   std::vector<Point> points(input.y.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     points[i] = Point{input.y[i], input.z[i], input.lines[i]};
     if (!std::isfinite(points[i].y) || !std::isfinite(points[i].z)) {
-      throw InputError(At(source, points[i].line, "coordinate is not a finite number"));
+      throw InputError(At(input.source, points[i].line, "coordinate is not a finite number"));
     }
   }
-  const int last_line = input.lines.empty() ? 1 : input.lines.back();
-  RequireEnoughPoints(points, source, last_line, "");
+  return points;
+}
 
-  // 1. Units and mirroring: z first, since judging the lateral side needs z the right way up.
+// Units and mirroring: z first, since judging the lateral side needs z the right way up.
+void ScaleAndOrient(std::vector<Point>& points, ProfileKind kind, const ProfileOptions& options,
+                    const std::string& source, Profile& profile) {
   if (options.scale_yz != 1.0) {
     for (Point& p : points) {
       p.y *= options.scale_yz;
@@ -450,7 +438,7 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
   }
   bool flip_z = options.mirror_z == MirrorZ::kYes;
   if (options.mirror_z == MirrorZ::kAuto) {
-    flip_z = AutoMirrorZ(points, kind, source, options.report_orientation, warnings);
+    flip_z = AutoMirrorZ(points, kind, source, options.report_orientation, profile.warnings);
   }
   if (flip_z) {
     for (Point& p : points) p.z = -p.z;
@@ -460,39 +448,37 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
   // Upside down, the rail's deep side and the wheel's flange are not what they seem: the
   // lateral judgement would name the wrong key.
   if (profile.orientation_doubts.empty()) {
-    OrientLaterally(points, kind, options, source, profile, warnings);
+    OrientLaterally(points, kind, options, source, profile, profile.warnings);
   }
+}
 
-  // 2. Repeated points (a zero-length segment has no direction).
-  RemoveDuplicates(points, source, warnings);
-  RequireEnoughPoints(points, source, last_line, " after removing duplicates");
-
-  // 3. Orientation: rails run with y ascending, wheels with y descending (material on the
-  // right-hand side). Judged from the end points, which also works for overhanging parts.
+// Rails run with y ascending, wheels with y descending (material on the right-hand side).
+// Judged from the end points, which also works for overhanging parts.
+void OrderPoints(std::vector<Point>& points, ProfileKind kind, const std::string& source,
+                 Profile& profile) {
   const bool ascending = points.back().y > points.front().y;
   if (points.back().y == points.front().y) {
-    warnings.push_back(source + ": both ends of the profile have the same y; point order kept");
+    profile.warnings.push_back(source +
+                               ": both ends of the profile have the same y; point order kept");
   } else if (ascending != (kind == ProfileKind::kRail)) {
     std::reverse(points.begin(), points.end());
     profile.reversed = true;
   }
+}
 
-  // 4. Zig-zags and spikes; averaging may produce a repeated point, so duplicates again.
+// Repeated points, zig-zags, spikes and loops, each repair followed by the duplicates it may
+// leave (averaging, or a crossing point that coincides with its neighbour).
+void RemoveDefects(std::vector<Point>& points, const ProfileOptions& options,
+                   const std::string& source, int last_line, std::vector<std::string>& warnings) {
   RemoveZigZags(points, options.zigzag_threshold_deg, options.remove_spikes, source, warnings);
   RemoveDuplicates(points, source, warnings);
   RequireEnoughPoints(points, source, last_line, " after removing zig-zags");
-
-  // 5. Loops; the crossing point that replaces a loop may coincide with its neighbour.
   RemoveLoops(points, source, warnings);
   RemoveDuplicates(points, source, warnings);
   RequireEnoughPoints(points, source, last_line, " after removing loops");
+}
 
-  // 6. Size check.
-  const double length = Length(points);
-  if (!(length >= kMinProfileLength && length <= kMaxProfileLength)) {  // NaN fails too.
-    throw InputError(LengthProblem(source, length));
-  }
-
+void StorePoints(const std::vector<Point>& points, Profile& profile) {
   profile.y.reserve(points.size());
   profile.z.reserve(points.size());
   profile.lines.reserve(points.size());
@@ -501,11 +487,44 @@ Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOption
     profile.z.push_back(p.z);
     profile.lines.push_back(p.line);
   }
+}
 
-  // 7. Kinks, found on the repaired points before smoothing could round them.
+}  // namespace
+
+double Profile::PolylineLength() const {
+  double length = 0.0;
+  for (std::size_t i = 1; i < y.size(); ++i) length += std::hypot(y[i] - y[i - 1], z[i] - z[i - 1]);
+  return length;
+}
+
+Profile RepairProfile(ProfilePoints input, ProfileKind kind, const ProfileOptions& options) {
+  const std::string& source = input.source;
+  ValidateRepairOptions(options, source);
+  std::vector<Point> points = FinitePoints(input);
+  Profile profile;
+  profile.kind = kind;
+  profile.format = input.format;
+  profile.source = source;
+  profile.mirrored_y = input.mirrored_y;
+  profile.mirrored_z = input.mirrored_z;
+  profile.warnings = std::move(input.warnings);
+  const int last_line = input.lines.empty() ? 1 : input.lines.back();
+  RequireEnoughPoints(points, source, last_line, "");
+
+  ScaleAndOrient(points, kind, options, source, profile);
+  // A zero-length segment has no direction: repeated points go before anything is judged.
+  RemoveDuplicates(points, source, profile.warnings);
+  RequireEnoughPoints(points, source, last_line, " after removing duplicates");
+  OrderPoints(points, kind, source, profile);
+  RemoveDefects(points, options, source, last_line, profile.warnings);
+  const double length = Length(points);
+  if (!(length >= kMinProfileLength && length <= kMaxProfileLength)) {  // NaN fails too.
+    throw InputError(LengthProblem(source, length));
+  }
+  StorePoints(points, profile);
+  // Kinks, found on the repaired points before smoothing could round them; then smoothing,
+  // part by part so that the kinks stay sharp.
   profile.kinks = profile_detail::FindKinks(profile.y, profile.z, options);
-
-  // 8. Smoothing, part by part so that the kinks stay sharp.
   if (options.smoothing > 0.0) {
     profile_detail::SmoothPointsBetweenKinks(profile.y, profile.z, options.smoothing,
                                              profile.kinks);

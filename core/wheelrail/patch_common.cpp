@@ -219,160 +219,208 @@ void SolveCoupledOnGrid(const PatchContext& ctx, const Grid& grid, const std::ve
 
 namespace {
 
-// The normal and tangential solution on the potential contact area (SolveOnGrid without the
-// measurement of the contact's extent).
-void SolveFields(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
-                 const std::vector<double>& wx, const std::vector<double>& wy,
-                 const std::vector<double>& mu, PatchResult& result) {
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// Refuses a potential contact area larger than WheelRailOptions::max_patch_elements.
+void RequireSolvableSize(const PatchContext& ctx, const Grid& grid) {
   if (grid.size() > static_cast<std::size_t>(ctx.options->max_patch_elements)) {
     throw InputError(ctx.c->source_name + ": a contact patch needs " + std::to_string(grid.nx) +
                      " x " + std::to_string(grid.ny) + " elements, more than the limit of " +
                      std::to_string(ctx.options->max_patch_elements) +
                      ": coarsen grid.dx/grid.ds or check the pose");
   }
+}
+
+// The solve box (SolveBox) as a grid of its own, with the moves of fields between it and the
+// potential contact area.
+struct BoxOnGrid {
+  const Grid& grid;
+  SolveBox sb;
+  Grid box;
+
+  BoxOnGrid(const Grid& g, const SolveBox& b) : grid(g), sb(b), box(g) {
+    box.nx = sb.nx;
+    box.ny = sb.ny;
+    box.x0 = grid.x(sb.i0);
+    box.y0 = grid.y(sb.j0);
+  }
+  std::vector<double> Crop(const std::vector<double>& v) const {
+    std::vector<double> out(box.size());
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) out[box.index(i, j)] = v[grid.index(sb.i0 + i, sb.j0 + j)];
+    }
+    return out;
+  }
+  // Back onto the potential contact area, `outside` where the box does not reach.
+  std::vector<double> Expand(const std::vector<double>& v,
+                             const std::vector<double>* outside) const {
+    std::vector<double> out = outside ? *outside : std::vector<double>(grid.size(), 0.0);
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
+    }
+    return out;
+  }
+  std::vector<ElementState> ExpandStates(const std::vector<ElementState>& v) const {
+    std::vector<ElementState> out(grid.size(), ElementState::kExterior);
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
+    }
+    return out;
+  }
+};
+
+// The normal problem on the solve box, warm-started from the patch's previous solution; fills
+// the normal fields of `result`.
+NormalSummary SolveNormalOnBox(const PatchContext& ctx, const BoxOnGrid& on, bool reuse,
+                               const std::vector<double>& h, PatchCache& cache, NormalSolution& ns,
+                               PatchResult& result) {
+  const auto t0 = Clock::now();
+  if (!reuse) {
+    cache.normal_operator = std::make_unique<FftInfluenceOperator>(
+        on.box, ctx.material, std::vector<InfluenceComponent>{InfluenceComponent::kNN});
+    cache.rolling_operator.reset();
+  }
+  const FftInfluenceOperator& op = *cache.normal_operator;
+  op.Prepare();  // every normal solve transforms: its plan and kernel count as influence time
+  const std::vector<double> h_box = on.Crop(h);
+  NormalOptions normal_options = ctx.options->normal;
+  if (cache.has_normal) {
+    Remap(cache.normal_box, cache.normal.pressure, on.box, ns.pressure);
+    normal_options.warm_start = true;
+  }
+  const auto t1 = Clock::now();
+  const NormalSummary normal =
+      SolveNormal(op, h_box, NormalLoad::Approach(0.0), normal_options, cache.normal_workspace, ns);
+  if (ctx.timings) {
+    ctx.timings->influence += Seconds(t0, t1);
+    ctx.timings->normal += Seconds(t1, Clock::now());
+  }
+  result.normal_iterations = normal.iterations;
+  result.status = normal.status;
+  result.pn = on.Expand(ns.pressure, nullptr);
+  result.pmax = ns.pmax;
+  result.n_contact = ns.n_contact;
+  return normal;
+}
+
+// Without friction every element in contact slips.
+void FrictionlessStates(const Grid& grid, PatchResult& result) {
+  result.state.assign(grid.size(), ElementState::kExterior);
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    if (result.pn[k] > 0.0) result.state[k] = ElementState::kSlip;
+  }
+  result.n_slip = result.n_contact;
+}
+
+// The previous tractions of this patch moved onto the box, as the start of the next solve.
+// Slip tractions are μ·p_n and adhesion tractions grow with the load too: scaled by the change
+// of pressure, the previous solution starts the next step of a force iteration closer than
+// unscaled.
+void WarmTractions(const PatchCache& cache, const Grid& box, const std::vector<double>& pressure,
+                   TangentialSolution& ts) {
+  Remap(cache.tangential_box, cache.tangential.px, box, ts.px);
+  Remap(cache.tangential_box, cache.tangential.py, box, ts.py);
+  std::vector<double> p_old;
+  Remap(cache.tangential_box, cache.tangential_pressure, box, p_old);
+  for (std::size_t k = 0; k < p_old.size(); ++k) {
+    if (p_old[k] > 0.0) {
+      const double ratio = pressure[k] / p_old[k];
+      ts.px[k] *= ratio;
+      ts.py[k] *= ratio;
+    }
+  }
+}
+
+// The steady-rolling problem on the solve box under the pressure ns; fills the tangential
+// fields of `result`.
+TangentialSummary SolveTangentialOnBox(const PatchContext& ctx, const BoxOnGrid& on,
+                                       const NormalSolution& ns, const std::vector<double>& wx,
+                                       const std::vector<double>& wy, const std::vector<double>& mu,
+                                       PatchCache& cache, TangentialSolution& ts,
+                                       PatchResult& result) {
+  const auto t0 = Clock::now();
+  if (!cache.rolling_operator) {
+    cache.rolling_operator = std::make_unique<SteadyRollingOperator>(on.box, ctx.material);
+  }
+  const SteadyRollingOperator& rolling = *cache.rolling_operator;
+  const auto t1 = Clock::now();
+  TangentialProblem tp;
+  tp.pressure = ns.pressure;
+  tp.mu = mu.size() == on.grid.size() ? on.Crop(mu) : mu;  // or one value for the whole patch
+  tp.wx = on.Crop(wx);
+  tp.wy = on.Crop(wy);
+  result.wx = wx;
+  result.ws = wy;
+  TangentialOptions tangential_options = ctx.options->tangential;
+  tangential_options.final_slip = ctx.options->keep_fields;  // only the fields show the slip
+  if (cache.has_tangential) {
+    WarmTractions(cache, on.box, ns.pressure, ts);
+    tangential_options.warm_start = true;
+  }
+  const TangentialSummary summary =
+      SolveTangential(rolling, tp, tangential_options, cache.tangential_workspace, ts);
+  if (ctx.timings) {
+    ctx.timings->influence += Seconds(t0, t1);
+    ctx.timings->tangential += Seconds(t1, Clock::now());
+  }
+  result.tangential_iterations = summary.iterations;
+  if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
+  result.px = on.Expand(ts.px, nullptr);
+  result.ps = on.Expand(ts.py, nullptr);
+  // Outside the box nothing is in contact; the slip reported there is the rigid slip.
+  result.sx = on.Expand(ts.sx, &wx);
+  result.ss = on.Expand(ts.sy, &wy);
+  result.state = on.ExpandStates(ts.state);
+  result.n_slip = ts.n_slip;
+  result.n_adhesion = ts.n_adhesion;
+  return summary;
+}
+
+// The normal and tangential solution on the potential contact area (SolveOnGrid without the
+// measurement of the contact's extent). Converged solutions are kept in the patch's cache as
+// the warm start of its next solve.
+void SolveFields(const PatchContext& ctx, const Grid& grid, const std::vector<double>& h,
+                 const std::vector<double>& wx, const std::vector<double>& wy,
+                 const std::vector<double>& mu, PatchResult& result) {
+  RequireSolvableSize(ctx, grid);
   result.grid = grid;
   result.n_pot = static_cast<int>(grid.size());
   result.h = h;
   double hmin = 0.0;
   for (double v : h) hmin = std::min(hmin, v);
   result.approach = -hmin;
-
-  using Clock = std::chrono::steady_clock;
-  auto seconds = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double>(b - a).count();
-  };
   if (ctx.tangential && ctx.material.kappa != 0.0) {
     SolveCoupledOnGrid(ctx, grid, h, wx, wy, mu, result);
     return;
   }
   PatchCache local;
   PatchCache& cache = ctx.cache ? *ctx.cache : local;
-  const auto t0 = Clock::now();
   bool reuse = false;
-  const SolveBox sb = ChooseBox(grid, h, ctx.cache, ctx.options->solve_box, reuse);
-  Grid box = grid;
-  box.nx = sb.nx;
-  box.ny = sb.ny;
-  box.x0 = grid.x(sb.i0);
-  box.y0 = grid.y(sb.j0);
-  auto crop = [&](const std::vector<double>& v) {
-    std::vector<double> out(box.size());
-    for (int j = 0; j < box.ny; ++j) {
-      for (int i = 0; i < box.nx; ++i) out[box.index(i, j)] = v[grid.index(sb.i0 + i, sb.j0 + j)];
-    }
-    return out;
-  };
-  // Back onto the potential contact area, `outside` where the box does not reach.
-  auto expand = [&](const std::vector<double>& v, const std::vector<double>* outside) {
-    std::vector<double> out = outside ? *outside : std::vector<double>(grid.size(), 0.0);
-    for (int j = 0; j < box.ny; ++j) {
-      for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
-    }
-    return out;
-  };
-  if (!reuse) {
-    cache.normal_operator = std::make_unique<FftInfluenceOperator>(
-        box, ctx.material, std::vector<InfluenceComponent>{InfluenceComponent::kNN});
-    cache.rolling_operator.reset();
-  }
-  const FftInfluenceOperator& op = *cache.normal_operator;
-  op.Prepare();  // every normal solve transforms: its plan and kernel count as influence time
-  const std::vector<double> h_box = crop(h);
-  // Warm start: the previous solution of this patch moved onto this box.
+  const BoxOnGrid on(grid, ChooseBox(grid, h, ctx.cache, ctx.options->solve_box, reuse));
   NormalSolution ns;
-  NormalOptions normal_options = ctx.options->normal;
-  if (cache.has_normal) {
-    Remap(cache.normal_box, cache.normal.pressure, box, ns.pressure);
-    normal_options.warm_start = true;
-  }
-  const auto t1 = Clock::now();
-  const NormalSummary normal =
-      SolveNormal(op, h_box, NormalLoad::Approach(0.0), normal_options, cache.normal_workspace, ns);
-  const auto t2 = Clock::now();
-  if (ctx.timings) {
-    ctx.timings->influence += seconds(t0, t1);
-    ctx.timings->normal += seconds(t1, t2);
-  }
-  result.normal_iterations = normal.iterations;
-  result.status = normal.status;
-  result.pn = expand(ns.pressure, nullptr);
-  result.pmax = ns.pmax;
-  result.n_contact = ns.n_contact;
-
-  const bool tangential = ctx.tangential && normal.status != SolverStatus::kNoContact;
-  if (!tangential) {
-    result.state.assign(grid.size(), ElementState::kExterior);
-    for (std::size_t k = 0; k < grid.size(); ++k) {
-      if (result.pn[k] > 0.0) result.state[k] = ElementState::kSlip;  // frictionless: all slip
-    }
-    result.n_slip = result.n_contact;
-    if (normal.status != SolverStatus::kNotConverged) {
+  const NormalSummary normal = SolveNormalOnBox(ctx, on, reuse, h, cache, ns, result);
+  const bool normal_converged = normal.status != SolverStatus::kNotConverged;
+  if (!ctx.tangential || normal.status == SolverStatus::kNoContact) {
+    FrictionlessStates(grid, result);
+    if (normal_converged) {
       cache.normal = std::move(ns);
-      cache.normal_box = box;
+      cache.normal_box = on.box;
       cache.has_normal = true;
     }
     return;
   }
-  const auto t3 = Clock::now();
-  if (!cache.rolling_operator) {
-    cache.rolling_operator = std::make_unique<SteadyRollingOperator>(box, ctx.material);
-  }
-  const SteadyRollingOperator& rolling = *cache.rolling_operator;
-  const auto t4 = Clock::now();
-  TangentialProblem tp;
-  tp.pressure = ns.pressure;
-  tp.mu = mu.size() == grid.size() ? crop(mu) : mu;  // or one value for the whole patch
-  tp.wx = crop(wx);
-  tp.wy = crop(wy);
-  result.wx = wx;
-  result.ws = wy;
   TangentialSolution ts;
-  TangentialOptions tangential_options = ctx.options->tangential;
-  tangential_options.final_slip = ctx.options->keep_fields;  // only the fields show the slip
-  if (cache.has_tangential) {
-    Remap(cache.tangential_box, cache.tangential.px, box, ts.px);
-    Remap(cache.tangential_box, cache.tangential.py, box, ts.py);
-    // Slip tractions are μ·p_n and adhesion tractions grow with the load too: scaled by the
-    // change of pressure, the previous solution starts the next step of a force iteration
-    // closer than unscaled.
-    std::vector<double> p_old;
-    Remap(cache.tangential_box, cache.tangential_pressure, box, p_old);
-    for (std::size_t k = 0; k < p_old.size(); ++k) {
-      if (p_old[k] > 0.0) {
-        const double ratio = ns.pressure[k] / p_old[k];
-        ts.px[k] *= ratio;
-        ts.py[k] *= ratio;
-      }
-    }
-    tangential_options.warm_start = true;
-  }
-  const TangentialSummary summary =
-      SolveTangential(rolling, tp, tangential_options, cache.tangential_workspace, ts);
-  result.tangential_iterations = summary.iterations;
-  if (ctx.timings) {
-    ctx.timings->influence += seconds(t3, t4);
-    ctx.timings->tangential += seconds(t4, Clock::now());
-  }
-  if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
-  result.px = expand(ts.px, nullptr);
-  result.ps = expand(ts.py, nullptr);
-  // Outside the box nothing is in contact; the slip reported there is the rigid slip.
-  result.sx = expand(ts.sx, &wx);
-  result.ss = expand(ts.sy, &wy);
-  result.state.assign(grid.size(), ElementState::kExterior);
-  for (int j = 0; j < box.ny; ++j) {
-    for (int i = 0; i < box.nx; ++i) {
-      result.state[grid.index(sb.i0 + i, sb.j0 + j)] = ts.state[box.index(i, j)];
-    }
-  }
-  result.n_slip = ts.n_slip;
-  result.n_adhesion = ts.n_adhesion;
-  if (normal.status != SolverStatus::kNotConverged &&
-      summary.status != SolverStatus::kNotConverged) {
+  const TangentialSummary tangential =
+      SolveTangentialOnBox(ctx, on, ns, wx, wy, mu, cache, ts, result);
+  if (normal_converged && tangential.status != SolverStatus::kNotConverged) {
     cache.tangential_pressure = ns.pressure;
     cache.normal = std::move(ns);
     cache.tangential = std::move(ts);
-    cache.normal_box = cache.tangential_box = box;
+    cache.normal_box = cache.tangential_box = on.box;
     cache.has_normal = cache.has_tangential = true;
   }
 }
