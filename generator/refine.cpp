@@ -29,6 +29,7 @@
 #include "generator/progress.h"
 #include "generator/refine.h"
 #include "generator/sweep.h"
+#include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
 #include "wrc/scene.h"
 
@@ -890,10 +891,10 @@ GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
   hooks.known = [&everything](std::uint64_t point, PointResult* result) {
     return everything.Lookup(point, result);
   };
-  hooks.attributes = {{"refine_target", TargetDescription(settings_)},
-                      {"refine_passes", passes.dump()},
-                      {"refine_stop", stop_reason},
-                      {"refine_estimated_error", estimate.dump()}};
+  hooks.attributes = {{schema::kRefineTarget, TargetDescription(settings_)},
+                      {schema::kRefinePasses, passes.dump()},
+                      {schema::kRefineStop, stop_reason},
+                      {schema::kRefineEstimatedError, estimate.dump()}};
   hooks.watch_signals = options_.handle_signals;
   GenerateOptions options = options_;
   options.handle_signals = false;

@@ -7,7 +7,7 @@
 #include <tuple>
 
 #include "runtime/hdf5/hdf5.h"
-#include "runtime/table_layout.h"
+#include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
 
@@ -38,32 +38,32 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   const auto lock = h5::LibraryLock();
   const h5::File file = h5::File::Open(path.string());
   TableInfo info;
-  if (!file.HasAttribute("format")) {
+  if (!file.HasAttribute(schema::kFormat)) {
     throw InputError(path.string() + ": not a wrc table (no 'format' attribute)");
   }
-  info.format = file.ReadStringAttribute("format");
-  if (info.format != "wrc-table") {
+  info.format = file.ReadStringAttribute(schema::kFormat);
+  if (info.format != schema::kFormatName) {
     throw InputError(path.string() + ": not a wrc table (format is \"" + info.format + "\")");
   }
-  info.format_version =
-      file.HasAttribute("format_version") ? file.ReadIntAttribute("format_version") : 0;
-  if (file.HasAttribute("warnings_count")) {
-    info.warnings_count = file.ReadIntAttribute("warnings_count");
+  info.format_version = file.HasAttribute(schema::kFormatVersionAttribute)
+                            ? file.ReadIntAttribute(schema::kFormatVersionAttribute)
+                            : 0;
+  if (file.HasAttribute(schema::kWarningsCount)) {
+    info.warnings_count = file.ReadIntAttribute(schema::kWarningsCount);
   }
-  for (const std::string& name :
-       h5::RootAttributeNamesToRead(file, runtime::TableRootAttributeNames())) {
-    if (name == "format") continue;
+  for (const std::string& name : h5::RootAttributeNamesToRead(file, schema::RootAttributeNames())) {
+    if (name == schema::kFormat) continue;
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString) {
       info.attributes.emplace_back(name, attribute.ReadString());
     }
   }
 
-  const h5::Group axes = file.OpenGroup("axes");
+  const h5::Group axes = file.OpenGroup(schema::kAxes);
   std::vector<h5::Size> shape;
-  for (const std::string& name : axes.ReadStringArrayAttribute("order")) {
+  for (const std::string& name : axes.ReadStringArrayAttribute(schema::kOrder)) {
     const h5::Dataset dataset = axes.OpenDataset(name);
-    info.axes.push_back({name, OptionalString(dataset, "unit"), dataset.Read<double>()});
+    info.axes.push_back({name, OptionalString(dataset, schema::kUnit), dataset.Read<double>()});
     if (info.axes.back().values.empty()) {
       throw InputError(path.string() + ":/axes/" + name + ": the axis is empty");
     }
@@ -72,33 +72,36 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   info.points = 1;
   for (const h5::Size n : shape) info.points *= static_cast<std::size_t>(n);
 
-  const h5::Dataset status_dataset = file.OpenDataset("status");
+  const h5::Dataset status_dataset = file.OpenDataset(schema::kStatus);
   if (status_dataset.Shape() != shape) {
     throw InputError(path.string() + ":/status: its shape does not match the axes");
   }
   const std::vector<std::int8_t> status = status_dataset.Read<std::int8_t>();
   for (const std::int8_t s : status) {
-    if (s >= 0 && s < kPointStatusCount) {
+    if (s >= 0 && s < schema::kStoredStatusCount) {
       ++info.status_counts[s];
     } else {
       ++info.other_status;
     }
   }
 
-  const h5::Group outputs = file.OpenGroup("outputs");
-  const std::vector<std::string> output_names = outputs.HasAttribute("order")
-                                                    ? outputs.ReadStringArrayAttribute("order")
-                                                    : outputs.MemberNames();
+  const h5::Group outputs = file.OpenGroup(schema::kOutputs);
+  const std::vector<std::string> output_names =
+      outputs.HasAttribute(schema::kOrder) ? outputs.ReadStringArrayAttribute(schema::kOrder)
+                                           : outputs.MemberNames();
   for (const std::string& name : output_names) {
     const h5::Dataset dataset = outputs.OpenDataset(name);
     if (dataset.Shape() != shape) {
       throw InputError(path.string() + ":/outputs/" + name + ": its shape does not match the axes");
     }
-    TableInfo::Output output{name, OptionalString(dataset, "unit")};
+    TableInfo::Output output{name, OptionalString(dataset, schema::kUnit)};
     const std::vector<double> values = dataset.Read<double>();
     double low = std::numeric_limits<double>::infinity(), high = -low;
     for (std::size_t i = 0; i < values.size(); ++i) {
-      if (status[i] != 0 || !std::isfinite(values[i])) continue;
+      if (status[i] != static_cast<std::int8_t>(schema::StoredStatus::kOk) ||
+          !std::isfinite(values[i])) {
+        continue;
+      }
       low = std::min(low, values[i]);
       high = std::max(high, values[i]);
     }
@@ -109,34 +112,38 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
     info.outputs.push_back(output);
   }
 
-  if (HasOptional(file, "solve_time_s", h5::LinkKind::kDataset)) {
-    for (const float t : file.OpenDataset("solve_time_s").Read<float>()) {
+  if (HasOptional(file, schema::kSolveTime, h5::LinkKind::kDataset)) {
+    for (const float t : file.OpenDataset(schema::kSolveTime).Read<float>()) {
       info.solve_time_total_s += t;
       info.solve_time_max_s = std::max(info.solve_time_max_s, static_cast<double>(t));
     }
   }
 
-  if (HasOptional(file, "profiles", h5::LinkKind::kGroup)) {
-    const h5::Group profiles = file.OpenGroup("profiles");
-    for (auto [name, out_name, out_bytes] :
-         {std::tuple{"rail", &info.rail_profile_name, &info.rail_profile_bytes},
-          std::tuple{"wheel", &info.wheel_profile_name, &info.wheel_profile_bytes}}) {
+  if (HasOptional(file, schema::kProfiles, h5::LinkKind::kGroup)) {
+    const h5::Group profiles = file.OpenGroup(schema::kProfiles);
+    for (auto [name, digest, out_name, out_bytes] :
+         {std::tuple{schema::kRailProfile, schema::kRailProfileSha256, &info.rail_profile_name,
+                     &info.rail_profile_bytes},
+          std::tuple{schema::kWheelProfile, schema::kWheelProfileSha256, &info.wheel_profile_name,
+                     &info.wheel_profile_bytes}}) {
       if (!HasOptional(profiles, name, h5::LinkKind::kDataset)) continue;
       const h5::Dataset dataset = profiles.OpenDataset(name);
-      *out_name = OptionalString(dataset, "name");
+      *out_name = OptionalString(dataset, schema::kProfileName);
       *out_bytes = static_cast<std::size_t>(dataset.NumElements());
       const std::vector<std::uint8_t> bytes = dataset.Read<std::uint8_t>();
       CheckStoredProfileDigest(
           path.string(), name,
           std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-          OptionalString(file, std::string(name) + "_profile_sha256"));
+          OptionalString(file, digest));
     }
   }
 
-  if (HasOptional(file, "errors", h5::LinkKind::kGroup)) {
-    const h5::Group errors = file.OpenGroup("errors");
-    const std::vector<std::int64_t> points = errors.OpenDataset("point").Read<std::int64_t>();
-    const std::vector<std::string> messages = errors.OpenDataset("message").ReadStrings();
+  if (HasOptional(file, schema::kErrors, h5::LinkKind::kGroup)) {
+    const h5::Group errors = file.OpenGroup(schema::kErrors);
+    const std::vector<std::int64_t> points =
+        errors.OpenDataset(schema::kErrorPoint).Read<std::int64_t>();
+    const std::vector<std::string> messages =
+        errors.OpenDataset(schema::kErrorMessage).ReadStrings();
     for (std::size_t i = 0; i < points.size() && i < messages.size(); ++i) {
       TableInfo::Failure failure;
       failure.index = static_cast<std::uint64_t>(points[i]);

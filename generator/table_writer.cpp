@@ -8,6 +8,7 @@
 
 #include "generator/table_data.h"
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
 
 namespace wrc::gen {
@@ -26,7 +27,7 @@ void WriteProfile(h5::Group& group, const std::string& name, const std::filesyst
   if (bytes.empty()) throw InputError(path.string() + ": the profile file is empty");
   h5::Dataset dataset =
       group.WriteDataset<std::uint8_t>(name, {bytes.size()}, bytes, h5::CompressedChecked());
-  dataset.WriteStringAttribute("name", path.filename().string());
+  dataset.WriteStringAttribute(schema::kProfileName, path.filename().string());
 }
 
 }  // namespace
@@ -65,6 +66,16 @@ std::string IsoTimestampUtc() {
   return text;
 }
 
+// The generator's point outcomes are the codes the table stores.
+static_assert(static_cast<int>(PointStatus::kOk) == static_cast<int>(schema::StoredStatus::kOk));
+static_assert(static_cast<int>(PointStatus::kNoContact) ==
+              static_cast<int>(schema::StoredStatus::kNoContact));
+static_assert(static_cast<int>(PointStatus::kNotConverged) ==
+              static_cast<int>(schema::StoredStatus::kNotConverged));
+static_assert(static_cast<int>(PointStatus::kError) ==
+              static_cast<int>(schema::StoredStatus::kError));
+static_assert(kPointStatusCount == schema::kStoredStatusCount);
+
 void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const TableData& data,
                     const TableProvenance& provenance) {
   if (data.finished != data.status.size()) {
@@ -72,63 +83,63 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
   }
   const auto lock = h5::LibraryLock();
   h5::File file = h5::File::Create(path.string(), /*overwrite=*/true);
-  file.WriteStringAttribute("format", "wrc-table");
-  file.WriteIntAttribute("format_version", 1);
-  file.WriteStringAttribute("wrc_version", GeneratorVersion());
-  file.WriteStringAttribute("created", provenance.created);
-  file.WriteStringAttribute("scene", scene.base.source_text);
-  file.WriteStringAttribute("rail_profile_sha256", provenance.rail_sha256);
-  file.WriteStringAttribute("wheel_profile_sha256", provenance.wheel_sha256);
+  file.WriteStringAttribute(schema::kFormat, schema::kFormatName);
+  file.WriteIntAttribute(schema::kFormatVersionAttribute, schema::kFormatVersion);
+  file.WriteStringAttribute(schema::kWrcVersion, GeneratorVersion());
+  file.WriteStringAttribute(schema::kCreated, provenance.created);
+  file.WriteStringAttribute(schema::kScene, scene.base.source_text);
+  file.WriteStringAttribute(schema::kRailProfileSha256, provenance.rail_sha256);
+  file.WriteStringAttribute(schema::kWheelProfileSha256, provenance.wheel_sha256);
   // Extension: how z was started at each prescribed-fz point (results differ in the last bits).
-  file.WriteStringAttribute("z_warm_start", provenance.z_warm_start);
-  file.WriteIntAttribute("warnings_count", static_cast<std::int64_t>(data.warning_points));
+  file.WriteStringAttribute(schema::kZWarmStart, provenance.z_warm_start);
+  file.WriteIntAttribute(schema::kWarningsCount, static_cast<std::int64_t>(data.warning_points));
   for (const auto& [name, value] : provenance.attributes) file.WriteStringAttribute(name, value);
 
   const h5::DatasetOptions storage = h5::CompressedChecked();
   std::vector<h5::Size> shape;
   for (const std::size_t n : scene.Shape()) shape.push_back(n);
 
-  h5::Group axes = file.CreateGroup("axes");
+  h5::Group axes = file.CreateGroup(schema::kAxes);
   std::vector<std::string> axis_names;
   for (const SceneAxis& axis : scene.axes) {
     h5::Dataset dataset =
         axes.WriteDataset<double>(axis.name, {axis.values.size()}, axis.values, storage);
-    dataset.WriteStringAttribute("unit", std::string(SceneQuantityUnit(axis.name)));
+    dataset.WriteStringAttribute(schema::kUnit, std::string(SceneQuantityUnit(axis.name)));
     axis_names.push_back(axis.name);
   }
-  axes.WriteStringArrayAttribute("order", axis_names);
+  axes.WriteStringArrayAttribute(schema::kOrder, axis_names);
 
-  h5::Group outputs = file.CreateGroup("outputs");
+  h5::Group outputs = file.CreateGroup(schema::kOutputs);
   for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
     const std::string& name = scene.outputs[k];
     h5::Dataset dataset = outputs.WriteDataset<double>(name, shape, data.values[k], storage);
-    dataset.WriteStringAttribute("unit", std::string(SceneQuantityUnit(name)));
-    dataset.WriteStringArrayAttribute("dimensions", axis_names);
+    dataset.WriteStringAttribute(schema::kUnit, std::string(SceneQuantityUnit(name)));
+    dataset.WriteStringArrayAttribute(schema::kDimensions, axis_names);
   }
-  outputs.WriteStringArrayAttribute("order", scene.outputs);
+  outputs.WriteStringArrayAttribute(schema::kOrder, scene.outputs);
 
-  h5::Dataset status = file.WriteDataset<std::int8_t>("status", shape, data.status, storage);
-  status.WriteStringAttribute("meaning", "0 ok, 1 no contact, 2 not converged, 3 error");
-  status.WriteStringArrayAttribute("dimensions", axis_names);
-  file.WriteDataset<float>("solve_time_s", shape, data.solve_time_s, storage)
-      .WriteStringAttribute("unit", "s");
+  h5::Dataset status = file.WriteDataset<std::int8_t>(schema::kStatus, shape, data.status, storage);
+  status.WriteStringAttribute(schema::kMeaning, schema::kStatusMeaning);
+  status.WriteStringArrayAttribute(schema::kDimensions, axis_names);
+  file.WriteDataset<float>(schema::kSolveTime, shape, data.solve_time_s, storage)
+      .WriteStringAttribute(schema::kUnit, "s");
 
-  h5::Group profiles = file.CreateGroup("profiles");
-  WriteProfile(profiles, "rail", scene.base.rail.path);
-  WriteProfile(profiles, "wheel", scene.base.wheel.path);
+  h5::Group profiles = file.CreateGroup(schema::kProfiles);
+  WriteProfile(profiles, schema::kRailProfile, scene.base.rail.path);
+  WriteProfile(profiles, schema::kWheelProfile, scene.base.wheel.path);
 
   // Extension: why points failed, so users need not re-run them to find out.
   if (!data.messages.empty()) {
-    h5::Group errors = file.CreateGroup("errors");
+    h5::Group errors = file.CreateGroup(schema::kErrors);
     std::vector<std::int64_t> points;
     std::vector<std::string> messages;
     for (const auto& [point, message] : data.messages) {
       points.push_back(static_cast<std::int64_t>(point));
       messages.push_back(message);
     }
-    errors.WriteDataset<std::int64_t>("point", {points.size()}, points, storage)
-        .WriteStringAttribute("meaning", "flat row-major index into the grid");
-    errors.WriteStringDataset("message", messages, storage);
+    errors.WriteDataset<std::int64_t>(schema::kErrorPoint, {points.size()}, points, storage)
+        .WriteStringAttribute(schema::kMeaning, "flat row-major index into the grid");
+    errors.WriteStringDataset(schema::kErrorMessage, messages, storage);
   }
   file.Flush();
 }

@@ -9,15 +9,16 @@
 #include <sstream>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/table_schema.h"
 #include "runtime/kernels.h"
 #include "runtime/table.h"
-#include "runtime/table_layout.h"
 
 namespace wrc::runtime {
 namespace {
 
-constexpr const char* kFormatName = "wrc-table";
-constexpr std::int64_t kFormatVersion = 1;
+using schema::kFormatName;
+using schema::kFormatVersion;
+constexpr auto kOkStatus = static_cast<std::int8_t>(schema::StoredStatus::kOk);
 
 std::string ShapeText(const std::vector<h5::Size>& shape) {
   std::ostringstream text;
@@ -71,15 +72,16 @@ std::string OptionalStringAttribute(const h5::Object& object, const std::string&
 
 void CheckRootAttributes(const h5::File& file) {
   const std::string where = file.FileName() + ":/";
-  if (!file.HasAttribute("format")) {
+  if (!file.HasAttribute(schema::kFormat)) {
     Invalid(where, "attribute 'format' is missing: not a wrc table");
   }
-  const std::string format = file.ReadStringAttribute("format");
+  const std::string format = file.ReadStringAttribute(schema::kFormat);
   if (format != kFormatName) {
     Invalid(where, "attribute 'format' is \"" + format + "\", expected \"" + kFormatName + "\"");
   }
-  if (!file.HasAttribute("format_version")) Invalid(where, "attribute 'format_version' is missing");
-  const std::int64_t version = file.ReadIntAttribute("format_version");
+  if (!file.HasAttribute(schema::kFormatVersionAttribute))
+    Invalid(where, "attribute 'format_version' is missing");
+  const std::int64_t version = file.ReadIntAttribute(schema::kFormatVersionAttribute);
   if (version != kFormatVersion) {
     Invalid(where, "attribute 'format_version' is " + std::to_string(version) +
                        ", this runtime reads version " + std::to_string(kFormatVersion));
@@ -114,8 +116,8 @@ void IndexBuckets(Axis& axis) {
 // check and transpose the data. Tables without the attribute are read as before.
 void CheckDimensions(const h5::Dataset& dataset, const std::vector<std::string>& axis_names,
                      const std::string& where) {
-  if (!dataset.HasAttribute("dimensions")) return;
-  const std::vector<std::string> dimensions = dataset.ReadStringArrayAttribute("dimensions");
+  if (!dataset.HasAttribute(schema::kDimensions)) return;
+  const std::vector<std::string> dimensions = dataset.ReadStringArrayAttribute(schema::kDimensions);
   if (dimensions == axis_names) return;
   std::string listed;
   for (const std::string& name : dimensions) listed += (listed.empty() ? "" : ", ") + name;
@@ -169,7 +171,7 @@ Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
   RequireType(dataset, h5::ElementType::kFloat64, where);
   Axis axis;
   axis.name = name;
-  axis.unit = OptionalStringAttribute(dataset, "unit");
+  axis.unit = OptionalStringAttribute(dataset, schema::kUnit);
   axis.values = dataset.Read<double>();
   CheckAxisValues(axis.values, where);
   const std::size_t n = axis.values.size();
@@ -262,7 +264,7 @@ Table Table::Load(const std::string& path) {
 
   Table table;
   table.path_ = path;
-  for (const std::string& name : h5::RootAttributeNamesToRead(file, TableRootAttributeNames())) {
+  for (const std::string& name : h5::RootAttributeNamesToRead(file, schema::RootAttributeNames())) {
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString &&
         attribute.Space().NumElements() == 1) {
@@ -271,10 +273,12 @@ Table Table::Load(const std::string& path) {
   }
 
   // Axes, in the order the /axes attribute 'order' gives.
-  if (file.Kind("axes") != h5::LinkKind::kGroup) Invalid(where + "/axes", "group is missing");
-  const h5::Group axes_group = file.OpenGroup("axes");
-  if (!axes_group.HasAttribute("order")) Invalid(where + "/axes", "attribute 'order' is missing");
-  const std::vector<std::string> axis_names = axes_group.ReadStringArrayAttribute("order");
+  if (file.Kind(schema::kAxes) != h5::LinkKind::kGroup)
+    Invalid(where + "/axes", "group is missing");
+  const h5::Group axes_group = file.OpenGroup(schema::kAxes);
+  if (!axes_group.HasAttribute(schema::kOrder))
+    Invalid(where + "/axes", "attribute 'order' is missing");
+  const std::vector<std::string> axis_names = axes_group.ReadStringArrayAttribute(schema::kOrder);
   if (axis_names.empty()) Invalid(where + "/axes", "attribute 'order' lists no axes");
   if (axis_names.size() > static_cast<std::size_t>(kMaxAxes)) {
     Invalid(where + "/axes", "attribute 'order' lists " + std::to_string(axis_names.size()) +
@@ -303,13 +307,13 @@ Table Table::Load(const std::string& path) {
   table.IndexAxes();
 
   // Outputs: the /outputs attribute 'order' when present, else the group's member order.
-  if (file.Kind("outputs") != h5::LinkKind::kGroup) {
+  if (file.Kind(schema::kOutputs) != h5::LinkKind::kGroup) {
     Invalid(where + "/outputs", "group is missing");
   }
-  const h5::Group outputs_group = file.OpenGroup("outputs");
+  const h5::Group outputs_group = file.OpenGroup(schema::kOutputs);
   std::vector<std::string> output_names = outputs_group.MemberNames();
-  if (outputs_group.HasAttribute("order")) {
-    std::vector<std::string> ordered = outputs_group.ReadStringArrayAttribute("order");
+  if (outputs_group.HasAttribute(schema::kOrder)) {
+    std::vector<std::string> ordered = outputs_group.ReadStringArrayAttribute(schema::kOrder);
     std::vector<std::string> sorted_members = output_names;
     std::vector<std::string> sorted_order = ordered;
     std::sort(sorted_members.begin(), sorted_members.end());
@@ -343,14 +347,14 @@ Table Table::Load(const std::string& path) {
     for (std::size_t node = 0; node < table.num_nodes_; ++node) {
       table.values_[node * n_out + k] = values[node];
     }
-    table.outputs_.push_back(Output{name, OptionalStringAttribute(dataset, "unit")});
+    table.outputs_.push_back(Output{name, OptionalStringAttribute(dataset, schema::kUnit)});
   }
 
   // Status of every node.
-  if (file.Kind("status") != h5::LinkKind::kDataset) {
+  if (file.Kind(schema::kStatus) != h5::LinkKind::kDataset) {
     Invalid(where + "/status", "dataset is missing");
   }
-  const h5::Dataset status = file.OpenDataset("status");
+  const h5::Dataset status = file.OpenDataset(schema::kStatus);
   if (status.Shape() != grid_shape) {
     Invalid(where + "/status", "shape " + ShapeText(status.Shape()) +
                                    " does not match the axis lengths " + ShapeText(grid_shape));
@@ -363,10 +367,10 @@ Table Table::Load(const std::string& path) {
   // reports as WRC_ERR_NO_DATA rather than returning it.
   std::vector<std::uint8_t> node_flags(table.num_nodes_, 0);
   for (std::size_t node = 0; node < table.num_nodes_; ++node) {
-    if (table.status_[node] != 0) node_flags[node] |= kCellStatus;
+    if (table.status_[node] != kOkStatus) node_flags[node] |= kCellStatus;
     for (std::size_t k = 0; k < n_out; ++k) {
       if (std::isfinite(table.values_[node * n_out + k])) continue;
-      if (table.status_[node] == 0) {
+      if (table.status_[node] == kOkStatus) {
         Invalid(where + "/outputs/" + output_names[k],
                 "non-finite value at node " + NodeText(node, table.axes_, table.node_stride_) +
                     " whose /status is 0 (ok)");

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/table_schema.h"
 
 namespace wrc::test {
 
@@ -66,25 +67,25 @@ inline std::vector<TableAxis> WheelsetAxes(int y_nodes) {
 /// Writes content to path (overwriting) as a complete, valid table.
 inline void WriteTable(const std::string& path, const TableContent& content) {
   h5::File file = h5::File::Create(path, /*overwrite=*/true, content.format);
-  file.WriteStringAttribute("format", "wrc-table");
-  file.WriteIntAttribute("format_version", 1);
-  file.WriteStringAttribute("wrc_version", "0.1.0-test");
-  file.WriteStringAttribute("created", "2024-01-01T00:00:00Z");
-  file.WriteStringAttribute("scene", content.scene);
-  file.WriteStringAttribute("rail_profile_sha256", std::string(64, '0'));
-  file.WriteStringAttribute("wheel_profile_sha256", std::string(64, '1'));
+  file.WriteStringAttribute(schema::kFormat, schema::kFormatName);
+  file.WriteIntAttribute(schema::kFormatVersionAttribute, schema::kFormatVersion);
+  file.WriteStringAttribute(schema::kWrcVersion, "0.1.0-test");
+  file.WriteStringAttribute(schema::kCreated, "2024-01-01T00:00:00Z");
+  file.WriteStringAttribute(schema::kScene, content.scene);
+  file.WriteStringAttribute(schema::kRailProfileSha256, std::string(64, '0'));
+  file.WriteStringAttribute(schema::kWheelProfileSha256, std::string(64, '1'));
 
-  h5::Group axes = file.CreateGroup("axes");
+  h5::Group axes = file.CreateGroup(schema::kAxes);
   std::vector<std::string> order;
   std::vector<h5::Size> shape;
   for (const TableAxis& axis : content.axes) {
     h5::Dataset dataset = axes.WriteDataset<double>(
         axis.name, {static_cast<h5::Size>(axis.values.size())}, axis.values, content.axis_storage);
-    dataset.WriteStringAttribute("unit", axis.unit);
+    dataset.WriteStringAttribute(schema::kUnit, axis.unit);
     order.push_back(axis.name);
     shape.push_back(axis.values.size());
   }
-  axes.WriteStringArrayAttribute("order", order);
+  axes.WriteStringArrayAttribute(schema::kOrder, order);
 
   // Enumerate nodes in row-major order (last axis fastest), as the datasets store them.
   std::size_t n_nodes = 1;
@@ -98,7 +99,7 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
     }
   }
 
-  h5::Group outputs = file.CreateGroup("outputs");
+  h5::Group outputs = file.CreateGroup(schema::kOutputs);
   for (std::size_t k = 0; k < content.outputs.size(); ++k) {
     std::vector<double> values(n_nodes);
     for (std::size_t node = 0; node < n_nodes; ++node) {
@@ -106,31 +107,35 @@ inline void WriteTable(const std::string& path, const TableContent& content) {
     }
     h5::Dataset dataset =
         outputs.WriteDataset(content.outputs[k], shape, values, h5::CompressedChecked());
-    dataset.WriteStringAttribute("unit", "N");
-    if (content.write_dimensions) dataset.WriteStringArrayAttribute("dimensions", order);
+    dataset.WriteStringAttribute(schema::kUnit, "N");
+    if (content.write_dimensions) dataset.WriteStringArrayAttribute(schema::kDimensions, order);
   }
-  if (content.write_output_order) outputs.WriteStringArrayAttribute("order", content.outputs);
+  if (content.write_output_order)
+    outputs.WriteStringArrayAttribute(schema::kOrder, content.outputs);
 
   std::vector<std::int8_t> status(n_nodes, 0);
   if (content.status) {
     for (std::size_t node = 0; node < n_nodes; ++node)
       status[node] = content.status(coordinates[node]);
   }
-  h5::Dataset status_dataset = file.WriteDataset("status", shape, status, h5::CompressedChecked());
-  if (content.write_dimensions) status_dataset.WriteStringArrayAttribute("dimensions", order);
-  file.WriteDataset("solve_time_s", shape, std::vector<float>(n_nodes, 0.01f),
+  h5::Dataset status_dataset =
+      file.WriteDataset(schema::kStatus, shape, status, h5::CompressedChecked());
+  if (content.write_dimensions)
+    status_dataset.WriteStringArrayAttribute(schema::kDimensions, order);
+  file.WriteDataset(schema::kSolveTime, shape, std::vector<float>(n_nodes, 0.01f),
                     h5::CompressedChecked());
 
-  h5::Group profiles = file.CreateGroup("profiles");
+  h5::Group profiles = file.CreateGroup(schema::kProfiles);
   const std::string rail_text = "# rail profile\n0 0\n1 0\n";
   const std::string wheel_text = "# wheel profile\n0 0\n1 1\n";
-  h5::Dataset rail = profiles.WriteDataset(
-      "rail", {rail_text.size()}, std::vector<std::uint8_t>(rail_text.begin(), rail_text.end()));
-  rail.WriteStringAttribute("name", "rail.prr");
+  h5::Dataset rail =
+      profiles.WriteDataset(schema::kRailProfile, {rail_text.size()},
+                            std::vector<std::uint8_t>(rail_text.begin(), rail_text.end()));
+  rail.WriteStringAttribute(schema::kProfileName, "rail.prr");
   h5::Dataset wheel =
-      profiles.WriteDataset("wheel", {wheel_text.size()},
+      profiles.WriteDataset(schema::kWheelProfile, {wheel_text.size()},
                             std::vector<std::uint8_t>(wheel_text.begin(), wheel_text.end()));
-  wheel.WriteStringAttribute("name", "wheel.prw");
+  wheel.WriteStringAttribute(schema::kProfileName, "wheel.prw");
 }
 
 /// A unique file name in the temporary directory, removed when the object goes away.

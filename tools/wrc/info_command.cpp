@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/generator.h"
 #include "wrc/runtime.hpp"
@@ -87,15 +88,15 @@ json InfoJson(const std::string& path, const TableInfo& info) {
 
 // The refine_* attributes of a refined table as one JSON object (null for other tables).
 nlohmann::json Refinement(const TableInfo& info) {
-  const std::string target = Attribute(info, "refine_target");
+  const std::string target = Attribute(info, schema::kRefineTarget);
   if (target.empty()) return nullptr;
   const auto parse = [](const std::string& text) {
     return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   };
   return {{"target", parse(target)},
-          {"passes", parse(Attribute(info, "refine_passes"))},
-          {"stop", Attribute(info, "refine_stop")},
-          {"estimated_error", parse(Attribute(info, "refine_estimated_error"))}};
+          {"passes", parse(Attribute(info, schema::kRefinePasses))},
+          {"stop", Attribute(info, schema::kRefineStop)},
+          {"estimated_error", parse(Attribute(info, schema::kRefineEstimatedError))}};
 }
 
 void PrintRefinement(const TableInfo& info) {
@@ -180,7 +181,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
       std::cout << "): " << failure.message << '\n';
     }
   }
-  std::cout << "scene:\n" << Attribute(info, "scene");
+  std::cout << "scene:\n" << Attribute(info, schema::kScene);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
 #include "wrc/profile.h"
@@ -367,7 +368,7 @@ Verification VerifyTable(const VerifyOptions& opt) {
   for (int a = 0; a < table.num_axes(); ++a) axes.push_back(table.axis_values(a));
   // Output values over the table, for the ranges, the patch counts and the near-jump sampler.
   const h5::File file = h5::File::Open(opt.table);
-  const h5::Group outputs_group = file.OpenGroup("outputs");
+  const h5::Group outputs_group = file.OpenGroup(schema::kOutputs);
   std::vector<std::vector<double>> values(n_out);
   std::vector<ErrorScale> scales(n_out);
   for (std::size_t o = 0; o < n_out; ++o) {
