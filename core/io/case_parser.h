@@ -9,8 +9,8 @@
 
 #include <toml++/toml.h>
 
-#include "core/io/toml_reader.h"
 #include "wrc/case.h"
+#include "wrc/toml_reader.h"
 
 namespace wrc::io {
 

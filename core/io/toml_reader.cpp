@@ -1,4 +1,4 @@
-#include "core/io/toml_reader.h"
+#include "wrc/toml_reader.h"
 
 #include <algorithm>
 #include <cmath>

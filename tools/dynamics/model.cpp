@@ -12,8 +12,8 @@
 #include <string_view>
 #include <utility>
 
-#include "core/io/toml_reader.h"
 #include "wrc/errors.h"
+#include "wrc/toml_reader.h"
 
 namespace wrc::dynamics {
 namespace {

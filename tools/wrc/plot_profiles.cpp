@@ -13,13 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "core/wheelrail/contact_search.h"
-#include "core/wheelrail/geometry.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/plot.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/profile.h"
+#include "wrc/profile_placement.h"
 #include "wrc/wheelrail.h"
 
 namespace wrc::cli {
@@ -36,85 +35,47 @@ constexpr double kNormalLength = 12.0;
 // What the drawing needs of a solve; everything in the right-side equivalent frame (a left case
 // is solved, and drawn, as its mirror image, then mirrored back for the files).
 struct Pose {
-  wr::WheelsetKinematics kin;
+  WheelsetPlacement placement;
   double mirror = 1.0;
   bool solved = false;
   std::vector<PatchResult> patches;
 };
 
-std::shared_ptr<const ProfileSpline> Spline(const ProfileSource& source, ProfileKind kind) {
-  if (source.spline) return source.spline;
-  return std::make_shared<const ProfileSpline>(
-      ReadProfile(source.path.string(), kind, ProfileOptionsOf(source)));
-}
-
-// The smallest gap of a search at wheelset height 0: the height of first contact.
-double FirstContact(const wr::ContactSearch& search) {
-  double first = std::numeric_limits<double>::infinity();
-  for (const wr::LocusSample& s : search.samples) {
-    if (s.valid) first = std::min(first, s.gap);
-  }
-  return first;
-}
-
 // Solves the case for its wheelset height and patches. A case that does not solve (an fz that
 // no height carries, a patch too large) is still drawn, at its prescribed z or at first
 // contact, without patches: the picture then shows what is wrong with the placement.
-Pose SolvePose(const Case& c, const wr::PlacedRail& rail,
-               const std::shared_ptr<const ProfileSpline>& wheel) {
+Pose SolvePose(const Case& c) {
   Pose pose;
   pose.mirror = c.wheelset.side == WheelSide::kLeft ? -1.0 : 1.0;
-  pose.kin.y = pose.mirror * c.state.y;
-  pose.kin.roll = pose.mirror * c.state.roll;
-  pose.kin.yaw = pose.mirror * c.state.yaw;
+  pose.placement.y = pose.mirror * c.state.y;
+  pose.placement.roll = pose.mirror * c.state.roll;
+  pose.placement.yaw = pose.mirror * c.state.yaw;
   try {
     WheelRailOptions options;
     options.keep_fields = true;
     WheelRailResult r = SolveWheelRail(c, options);
-    pose.kin.z = r.z;
+    pose.placement.z = r.z;
     pose.solved = true;
     pose.patches = std::move(r.patches);
   } catch (const InputError& e) {
     std::cerr << "wrc plot profiles: the case does not solve (" << e.what()
               << "); the profiles are drawn without contact patches\n";
     if (c.state.z) {
-      pose.kin.z = *c.state.z;
+      pose.placement.z = *c.state.z;
     } else {
-      const wr::PlacedWheel at_zero(wheel, c.wheelset, pose.kin);
-      pose.kin.z = FirstContact(wr::SearchContact(rail, at_zero, kDrawStep, 0.0));
-      if (!std::isfinite(pose.kin.z)) pose.kin.z = 0.0;
+      pose.placement.z = FirstContactHeight(c, pose.placement, kDrawStep);
+      if (!std::isfinite(pose.placement.z)) pose.placement.z = 0.0;
     }
   }
   return pose;
 }
 
-std::vector<double> Steps(double length) {
-  const int n = std::max(2, static_cast<int>(std::ceil(length / kDrawStep)));
-  std::vector<double> s(n + 1);
-  for (int k = 0; k <= n; ++k) s[k] = length * k / n;
-  return s;
-}
-
-// The rail's surface in the track frame: y z per line.
-void WriteRail(const fs::path& path, const wr::PlacedRail& rail, double mirror) {
+// One surface in the track frame: y z per line.
+void WriteSurface(const fs::path& path, const char* header, const std::vector<double>& y,
+                  const std::vector<double>& z, double mirror) {
   std::ofstream dat(path);
-  dat << "# rail surface, track frame: y_mm z_mm (z down)\n";
-  for (const Eigen::Vector2d& p : rail.PositionsAt(Steps(rail.length()))) {
-    dat << mirror * p(0) << ' ' << p(1) << '\n';
-  }
-}
-
-// The wheel's profile in its principal plane (x_w = 0, the lowest points of the wheel), placed
-// by the wheelset's pose: p_T = p_TWo + R_TW·(0, offset + y_w, r_nom + z_w).
-void WriteWheel(const fs::path& path, const wr::PlacedWheel& wheel, double mirror) {
-  std::ofstream dat(path);
-  dat << "# wheel profile in the wheelset's principal plane, track frame: y_mm z_mm (z down)\n";
-  const ProfileSpline& spline = wheel.spline();
-  for (const ProfileVector& pw : spline.PositionsAt(Steps(spline.length()))) {
-    const Eigen::Vector3d q(0.0, wheel.profile_offset() + pw.y, wheel.nominal_radius() + pw.z);
-    const Eigen::Vector3d p = wheel.p_TWo_T() + wheel.R_TW() * q;
-    dat << mirror * p(1) << ' ' << p(2) << '\n';
-  }
+  dat << header;
+  for (std::size_t k = 0; k < y.size(); ++k) dat << mirror * y[k] << ' ' << z[k] << '\n';
 }
 
 // The gap along the rail at the contact locus (the smallest vertical distance between the
@@ -124,17 +85,12 @@ struct GapRange {
   double y_min = 1e300, y_max = -1e300, gap_min = 1e300;
 };
 
-GapRange WriteGap(const fs::path& path, const wr::PlacedRail& rail, const wr::PlacedWheel& wheel,
-                  double mirror) {
-  // A reach far beyond any profile's height locates the wheel above every rail point.
-  constexpr double kEverywhere = 1e3;
-  const wr::ContactSearch search = wr::SearchContact(rail, wheel, kDrawStep, kEverywhere);
+GapRange WriteGap(const fs::path& path, const std::vector<GapSample>& gap, double mirror) {
   std::ofstream dat(path);
   dat << "# gap along the rail at the drawn wheelset height: y_mm (rail point, track frame) "
          "gap_mm (vertical, negative: interpenetration) x_mm (contact locus)\n";
   GapRange range;
-  for (const wr::LocusSample& s : search.samples) {
-    if (!s.valid || !std::isfinite(s.gap)) continue;
+  for (const GapSample& s : gap) {
     dat << mirror * s.y << ' ' << s.gap << ' ' << s.x << '\n';
     range.y_min = std::min(range.y_min, mirror * s.y);
     range.y_max = std::max(range.y_max, mirror * s.y);
@@ -286,7 +242,7 @@ std::string ProfilesScript(const View& v, const GapRange& gap, const std::string
 std::string ProfilesTitle(const Case& c, const Pose& pose) {
   std::string title = fs::path(c.source_name).filename().string() + ": " +
                       (c.wheelset.side == WheelSide::kLeft ? "left" : "right") + " wheel, y " +
-                      Short(c.state.y) + " mm, z " + Short(pose.kin.z) + " mm, roll " +
+                      Short(c.state.y) + " mm, z " + Short(pose.placement.z) + " mm, roll " +
                       Short(c.state.roll, 3) + " rad, yaw " + Short(c.state.yaw, 3) + " rad";
   title += pose.solved ? ", " + std::to_string(pose.patches.size()) + " patch(es)"
                        : " (not solved: no patches)";
@@ -302,20 +258,21 @@ WrittenFiles PlotProfiles(const fs::path& case_path, const fs::path& out) {
                      ": a half-space case has no profiles; `wrc plot profiles` needs a "
                      "wheel-rail case");
   }
-  const auto rail_spline = Spline(c.rail, ProfileKind::kRail);
-  const auto wheel_spline = Spline(c.wheel, ProfileKind::kWheel);
-  const wr::PlacedRail rail(rail_spline, c.track);
-  const Pose pose = SolvePose(c, rail, wheel_spline);
-  const wr::PlacedWheel wheel(wheel_spline, c.wheelset, pose.kin);
+  const Pose pose = SolvePose(c);
+  const PlacedProfiles placed = PlaceProfiles(c, pose.placement, kDrawStep);
   fs::create_directories(out);
   WrittenFiles written;
   for (const char* name : {"profiles_rail.dat", "profiles_wheel.dat", "profiles_gap.dat",
                            "profiles_patches.dat", "profiles_normals.dat"}) {
     written.push_back(out / name);
   }
-  WriteRail(written[0], rail, pose.mirror);
-  WriteWheel(written[1], wheel, pose.mirror);
-  const GapRange gap = WriteGap(written[2], rail, wheel, pose.mirror);
+  WriteSurface(written[0], "# rail surface, track frame: y_mm z_mm (z down)\n", placed.rail_y,
+               placed.rail_z, pose.mirror);
+  WriteSurface(written[1],
+               "# wheel profile in the wheelset's principal plane, track frame: y_mm z_mm "
+               "(z down)\n",
+               placed.wheel_y, placed.wheel_z, pose.mirror);
+  const GapRange gap = WriteGap(written[2], placed.gap, pose.mirror);
   std::string labels;
   WritePatches(written[3], written[4], pose, &labels);
   const std::string script = ProfilesScript(ViewOf(written[0], written[1], written[4]), gap,

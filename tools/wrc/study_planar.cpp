@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "core/io/toml_reader.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/study_common.h"
 #include "wrc/case.h"
 #include "wrc/errors.h"
 #include "wrc/profile.h"
+#include "wrc/toml_reader.h"
 
 namespace wrc::cli {
 namespace {

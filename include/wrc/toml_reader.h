@@ -1,7 +1,9 @@
 #pragma once
 /// @file toml_reader.h
-/// Private parts of the case and scene parsers: typed access to TOML values that turns every
-/// problem into an InputError "file:line: key.path = value: problem".
+/// Typed access to TOML values that turns every problem into an InputError "file:line:
+/// key.path = value: problem": what the case and scene parsers read with, and what the tools use
+/// for their own input files (the dynamics model, the planar audit) so that their messages read
+/// the same. Needs toml++ on the include path.
 
 #include <initializer_list>
 #include <optional>

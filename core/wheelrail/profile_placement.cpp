@@ -1,0 +1,78 @@
+#include "wrc/profile_placement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "core/wheelrail/contact_search.h"
+#include "core/wheelrail/geometry.h"
+#include "wrc/profile.h"
+
+namespace wrc {
+namespace {
+
+// A reach far beyond any profile's height locates the wheel above every rail point.
+constexpr double kEverywhere = 1e3;
+
+std::shared_ptr<const ProfileSpline> Spline(const ProfileSource& source, ProfileKind kind) {
+  if (source.spline) return source.spline;
+  return std::make_shared<const ProfileSpline>(
+      ReadProfile(source.path.string(), kind, ProfileOptionsOf(source)));
+}
+
+wr::WheelsetKinematics Kinematics(const WheelsetPlacement& pose) {
+  wr::WheelsetKinematics kin;
+  kin.y = pose.y;
+  kin.z = pose.z;
+  kin.roll = pose.roll;
+  kin.yaw = pose.yaw;
+  return kin;
+}
+
+std::vector<double> Steps(double length, double step) {
+  const int n = std::max(2, static_cast<int>(std::ceil(length / step)));
+  std::vector<double> s(n + 1);
+  for (int k = 0; k <= n; ++k) s[k] = length * k / n;
+  return s;
+}
+
+}  // namespace
+
+PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, double step) {
+  const wr::PlacedRail rail(Spline(c.rail, ProfileKind::kRail), c.track);
+  const wr::PlacedWheel wheel(Spline(c.wheel, ProfileKind::kWheel), c.wheelset, Kinematics(pose));
+  PlacedProfiles placed;
+  for (const Eigen::Vector2d& p : rail.PositionsAt(Steps(rail.length(), step))) {
+    placed.rail_y.push_back(p(0));
+    placed.rail_z.push_back(p(1));
+  }
+  // The principal plane x_w = 0 holds the lowest points of the wheel:
+  // p_T = p_TWo + R_TW·(0, offset + y_w, r_nom + z_w).
+  const ProfileSpline& spline = wheel.spline();
+  for (const ProfileVector& pw : spline.PositionsAt(Steps(spline.length(), step))) {
+    const Eigen::Vector3d q(0.0, wheel.profile_offset() + pw.y, wheel.nominal_radius() + pw.z);
+    const Eigen::Vector3d p = wheel.p_TWo_T() + wheel.R_TW() * q;
+    placed.wheel_y.push_back(p(1));
+    placed.wheel_z.push_back(p(2));
+  }
+  for (const wr::LocusSample& s : wr::SearchContact(rail, wheel, step, kEverywhere).samples) {
+    if (s.valid && std::isfinite(s.gap)) placed.gap.push_back({s.y, s.gap, s.x});
+  }
+  return placed;
+}
+
+double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step) {
+  const wr::PlacedRail rail(Spline(c.rail, ProfileKind::kRail), c.track);
+  WheelsetPlacement at_zero = pose;
+  at_zero.z = 0.0;
+  const wr::PlacedWheel wheel(Spline(c.wheel, ProfileKind::kWheel), c.wheelset,
+                              Kinematics(at_zero));
+  double first = std::numeric_limits<double>::infinity();
+  for (const wr::LocusSample& s : wr::SearchContact(rail, wheel, step, 0.0).samples) {
+    if (s.valid) first = std::min(first, s.gap);
+  }
+  return first;
+}
+
+}  // namespace wrc

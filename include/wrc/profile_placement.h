@@ -1,0 +1,41 @@
+#pragma once
+/// @file profile_placement.h
+/// The undeformed wheel and rail of a wheel–rail case placed at a wheelset pose, as pictures and
+/// checks need them: both surfaces in the track frame and the gap between them along the rail.
+/// Poses are those of the right-side equivalent case (a left case is mirrored in y, as the
+/// solver does).
+
+#include <vector>
+
+#include "wrc/case.h"
+
+namespace wrc {
+
+/// Wheelset pose relative to the track: lateral position and height (mm), roll and yaw (rad).
+struct WheelsetPlacement {
+  double y = 0.0, z = 0.0, roll = 0.0, yaw = 0.0;
+};
+
+/// The gap at one rail point: the smallest vertical distance over x between the undeformed
+/// surfaces (negative where they interpenetrate), and where along x it is.
+struct GapSample {
+  double y = 0.0;    ///< rail point, track frame, mm
+  double gap = 0.0;  ///< mm
+  double x = 0.0;    ///< contact locus, mm
+};
+
+struct PlacedProfiles {
+  std::vector<double> rail_y, rail_z;    ///< rail surface, track frame (z down), mm
+  std::vector<double> wheel_y, wheel_z;  ///< wheel profile in the wheelset's principal plane
+  std::vector<GapSample> gap;            ///< along the rail, where the wheel is above it
+};
+
+/// Surfaces sampled every `step` mm of arc length (at least 2 intervals each) and the gap along
+/// the rail at the same step. Throws InputError for a profile that cannot be read.
+PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, double step);
+
+/// The wheelset height at which the profiles first touch at pose's y, roll and yaw (pose.z is
+/// not used): the smallest gap at height 0. Infinity when the wheel is never above the rail.
+double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step);
+
+}  // namespace wrc
