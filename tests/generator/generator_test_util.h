@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "runtime/hdf5/hdf5.h"
+#include "tests/support/files.h"
+#include "tests/support/run.h"
 
 namespace wrc::test {
 
@@ -78,17 +80,8 @@ inline std::string DefaultTinyTable() {
          "\"fz_ws\", \"n_patches\", \"contact_y\", \"contact_angle\", \"pmax\", \"z\"]";
 }
 
-inline fs::path WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-inline std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadFile;
+using test_support::WriteFile;
 
 /// Everything a table stores, as bytes per object path, for bit-exact comparison: every
 /// dataset's values (numbers as the bits of float64, strings as they are) and every string
@@ -153,30 +146,10 @@ inline void ExpectIdenticalTables(const fs::path& a, const fs::path& b) {
   }
 }
 
-/// One shell word.
-inline std::string Quoted(const std::string& word) {
-  std::string quoted = "'";
-  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
+using test_support::CommandResult;
+using test_support::Quoted;
+using test_support::RunCommand;
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-/// Runs a shell command line, capturing stdout and stderr through files in dir.
-inline CommandResult RunCommand(const std::string& command, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const int status =
-      std::system((command + " >" + Quoted(out.string()) + " 2>" + Quoted(err.string())).c_str());
-  CommandResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadFile(out);
-  result.err = ReadFile(err);
-  return result;
-}
-
-inline std::string WrcBinary() { return (fs::path(WRC_BINARY_DIR) / "wrc").string(); }
+inline std::string WrcBinary() { return test_support::WrcBinary().string(); }
 
 }  // namespace wrc::test

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/files.h"
 #include "tests/tools/tool_test_util.h"
 
 namespace {
@@ -29,11 +30,7 @@ struct Outcome {
   std::string err;
 };
 
-std::string Quoted(const std::string& word) {
-  std::string quoted = "'";
-  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
+using wrc::test_support::Quoted;
 
 class CliFiles : public ::testing::Test {
  protected:
@@ -54,10 +51,7 @@ class CliFiles : public ::testing::Test {
     const int status = std::system(command.c_str());
     Outcome outcome;
     if (status != -1 && WIFEXITED(status)) outcome.exit_code = WEXITSTATUS(status);
-    std::ifstream in(err);
-    std::stringstream text;
-    text << in.rdbuf();
-    outcome.err = text.str();
+    outcome.err = wrc::test_support::ReadFile(err);
     return outcome;
   }
 

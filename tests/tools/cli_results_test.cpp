@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -24,12 +26,7 @@ const fs::path kHalfspaceCase =
     fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
 const fs::path kProfiles = fs::path(WRC_SOURCE_DIR) / "tables" / "profiles";
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using wrc::test_support::ReadFile;
 
 struct Outcome {
   int exit_code = -1;

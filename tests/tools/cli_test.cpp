@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -34,19 +36,9 @@ struct RunResult {
   std::string err;
 };
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using wrc::test_support::ReadFile;
 
-// One shell word, so that paths with spaces or quotes pass unchanged.
-std::string Quoted(const std::string& word) {
-  std::string quoted = "'";
-  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
+using wrc::test_support::Quoted;
 
 // A valid half-space case (docs/reference/case-files.md, half-space cases) that the bad-input tests
 // break one line at a time.

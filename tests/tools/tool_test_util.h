@@ -10,17 +10,14 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/files.h"
+
 namespace wrc::tool_test {
 
 inline const std::filesystem::path kWrc = std::filesystem::path(WRC_BINARY_DIR) / "wrc";
 inline const std::filesystem::path kSource = WRC_SOURCE_DIR;
 
-inline std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test_support::ReadFile;
 
 /// Runs `wrc ARGS` in `dir` with a time limit (s); stdout and stderr go to stdout.txt and
 /// stderr.txt there. The exit code, or -1 when it did not exit.
