@@ -60,8 +60,11 @@ struct NormalSummary {
   double residual = 0.0;  ///< Last relative pressure change.
 };
 
-/// Scratch memory for SolveNormal, caller-owned so that repeated solves on grids of the same
-/// size do not allocate. What it holds is the solver's own (opaque); move-only.
+/// Scratch memory for SolveNormal, caller-owned: it keeps every buffer the size of the grid, so
+/// repeated solves on grids of the same size do not allocate those. The deflated phase still
+/// builds its coarse space (prefix sums, element blocks, their Cholesky factor) per solve, in
+/// memory that grows with the contact set, not the grid (docs/design.md, "Memory in a solve").
+/// What it holds is the solver's own (opaque); move-only.
 class NormalWorkspace {
  public:
   NormalWorkspace();

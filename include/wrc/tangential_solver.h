@@ -90,8 +90,10 @@ struct TangentialSummary {
   double residual = 0.0;
 };
 
-/// Scratch memory for SolveTangential, caller-owned so that repeated solves reuse it. What it
-/// holds is the solver's own (opaque); move-only.
+/// Scratch memory for SolveTangential, caller-owned so that repeated solves reuse its buffers
+/// the size of the grid. The contact box of the sweep (rows, bounds) and the Anderson history
+/// are made per solve, in memory that grows with the contact, not the grid. What it holds is
+/// the solver's own (opaque); move-only.
 class TangentialWorkspace {
  public:
   TangentialWorkspace();
