@@ -22,9 +22,10 @@ struct CommandResult {
 inline CommandResult RunCommand(const std::string& command,
                                 const std::filesystem::path& capture_dir, int timeout_s = 0) {
   const std::filesystem::path out = capture_dir / "stdout.txt", err = capture_dir / "stderr.txt";
+  // Grouped, so that the redirections take every command of a list, not only its last one.
   const std::string limited =
       timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " sh -c " + Quoted(command)
-                    : command;
+                    : "{ " + command + "\n}";
   const int status =
       std::system((limited + " >" + Quoted(out.string()) + " 2>" + Quoted(err.string())).c_str());
   CommandResult result;
