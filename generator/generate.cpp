@@ -26,6 +26,7 @@
 #include "generator/journal.h"
 #include "generator/progress.h"
 #include "generator/refine.h"
+#include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "generator/table_data.h"
 #include "wrc/errors.h"

@@ -28,6 +28,7 @@
 #include "generator/journal.h"
 #include "generator/progress.h"
 #include "generator/refine.h"
+#include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"

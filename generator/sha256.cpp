@@ -8,6 +8,7 @@
 #include <fstream>
 #include <vector>
 
+#include "generator/sha256.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
 

@@ -164,12 +164,6 @@ GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options
 /// True when this build can split work across MPI ranks.
 bool GeneratorSupportsMpi();
 
-/// SHA-256 of bytes, as 64 lowercase hex digits.
-std::string Sha256Hex(std::string_view bytes);
-
-/// SHA-256 of a file's bytes; throws InputError when the file cannot be read.
-std::string Sha256FileHex(const std::filesystem::path& path);
-
 /// Throws InputError when a table's stored profile `name` ("rail" or "wheel") does not have
 /// the SHA-256 the table records for it in `recorded` (empty: the table records none).
 void CheckStoredProfileDigest(const std::string& table, const std::string& name,

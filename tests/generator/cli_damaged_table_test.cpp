@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "generator/sha256.h"
 #include "tests/generator/generator_test_util.h"
 #include "tests/runtime/table_writer.h"
 #include "wrc/generator.h"

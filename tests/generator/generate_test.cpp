@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "generator/sha256.h"
 #include "runtime/hdf5/hdf5.h"
 #include "tests/generator/generator_test_util.h"
 #include "wrc/errors.h"

@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include "generator/sha256.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
 
