@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "core/common/numbers.h"
+
 namespace wrc {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Antiderivatives F(X, Y) with ∂²F/∂X∂Y = kernel(X, Y). Terms that depend on X alone or on Y
 // alone cancel in the corner sum of RectangleIntegral, so they are left out; this also removes
