@@ -10,6 +10,9 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/files.h"
+#include "tests/support/run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -146,6 +149,20 @@ TEST(Verify, NothingVerifiedIsAnError) {
   const nlohmann::json report = nlohmann::json::parse(out);
   EXPECT_TRUE(report["outputs"]["fy"]["max_rel"].is_null());
   EXPECT_EQ(report["exact_status"]["error"].get<int>(), 3);
+}
+
+// Counts and sizes that must be positive say so in words, not as CLI11's range of doubles.
+TEST(Verify, ANonPositiveSampleCountIsRefusedInWords) {
+  const wrc::test_support::ScratchDir dir("wrc_verify_cli");
+  for (const char* samples : {"0", "-3"}) {
+    const wrc::test_support::CommandResult run =
+        wrc::test_support::RunCommand(Wrc() + " verify table.h5 --samples " + samples, dir.path());
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find(std::string("--samples: must be greater than 0, is ") + samples),
+              std::string::npos)
+        << run.err;
+    EXPECT_EQ(run.err.find("1797693"), std::string::npos) << run.err;
+  }
 }
 
 }  // namespace

@@ -8,6 +8,28 @@ namespace wrc::cli {
 /// Exit codes (docs/reference/cli.md): 0 ok or no contact, 2 bad input, 3 not converged.
 enum ExitCode : int { kExitOk = 0, kExitGateFailed = 1, kExitBadInput = 2, kExitNotConverged = 3 };
 
+/// Option checks that say in words what a value must be: CLI11's PositiveNumber and
+/// NonNegativeNumber state their range as "0.000000 to 1797693...(309 digits).000000".
+/// The message reads "--samples: must be greater than 0, is 0".
+inline CLI::Validator GreaterThanZero() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double value = 0.0;
+        const bool number = CLI::detail::lexical_cast(text, value);
+        return number && value > 0.0 ? std::string() : "must be greater than 0, is " + text;
+      },
+      "> 0");
+}
+inline CLI::Validator ZeroOrMore() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double value = 0.0;
+        const bool number = CLI::detail::lexical_cast(text, value);
+        return number && value >= 0.0 ? std::string() : "must be 0 or more, is " + text;
+      },
+      ">= 0");
+}
+
 /// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.
 void AddSolveCommand(CLI::App& app, int* exit_code);
 

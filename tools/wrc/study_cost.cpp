@@ -397,7 +397,7 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
                    "Element sizes dx = ds (dy), mm; the finest is the "
                    "reference")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   solver->add_option("--out", *solver_out, "Output directory (solver.csv, .png, .md)")
       ->capture_default_str();
@@ -425,7 +425,7 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       ->delimiter(',')
       ->capture_default_str();
   tables->add_option("--samples", *samples, "Exact solves per table")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   tables->add_option("--seed", *seed, "Seed of the sample points")->capture_default_str();
   tables->add_option("--threads", *threads, "Worker threads; 0: all cores")->capture_default_str();

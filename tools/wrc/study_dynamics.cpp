@@ -549,20 +549,20 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--speeds", options->speeds, "Speeds of the table sweep, m/s")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(GreaterThanZero());
   cmd->add_option("--solver-speeds", options->solver_speeds,
                   "Speeds of the solver runs, m/s (default: 0.8 and 1.2 times the table's "
                   "critical speed)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(GreaterThanZero());
   cmd->add_option("--solver-bisections", options->solver_bisections,
                   "Solver runs that narrow its critical speed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(ZeroOrMore());
   cmd->add_flag("--no-solver", options->no_solver, "Table runs only");
   cmd->add_flag("--linear-only", options->linear_only,
                 "Only the linearised contact of both sources (linear.csv, README.md)");
   cmd->add_option("--linear-speed", options->linear_speed, "Speed of the linearised contact, m/s")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   cmd->callback([options, exit_code]() {
     try {

@@ -569,7 +569,7 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
   paper->add_option("--out", o->out, "Output directory (CSV, PNG, README.md, inputs/)")
       ->capture_default_str();
   paper->add_option("--threads", o->threads, "Worker threads")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   paper->add_option("--z-range", o->z_range, "Fig. 13: wheelset heights FROM,TO,STEP, mm")
       ->delimiter(',')

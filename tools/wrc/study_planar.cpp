@@ -582,10 +582,10 @@ void AddPlanarStudy(CLI::App& study, int* exit_code) {
       ->add_option("--lv-limit", o->lv_limit,
                    "|L/V| of the curved reference up to which a case counts in the statistics "
                    "without flange climbing")
-      ->check(CLI::NonNegativeNumber)
+      ->check(ZeroOrMore())
       ->capture_default_str();
   planar->add_option("--threads", o->threads, "Worker threads")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   planar->callback([=]() {
     try {

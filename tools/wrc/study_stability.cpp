@@ -541,7 +541,7 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
                         "Without CASE: directory with the profiles of the built-in hard cases");
   stability->add_flag("--quick", *quick, "Built-in hard cases: double every step");
   stability->add_option("--threads", *threads, "Worker threads")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   stability->callback([=]() {
     try {

@@ -328,7 +328,7 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
   auto opt = std::make_shared<CommandOptions>();
   cmd->add_option("TABLE", opt->verify.table, "Table (HDF5) written by wrc generate")->required();
   cmd->add_option("--samples", opt->verify.samples, "Number of sample points")
-      ->check(CLI::PositiveNumber)
+      ->check(GreaterThanZero())
       ->capture_default_str();
   cmd->add_option("--seed", opt->verify.seed, "Random seed (fixed: results are repeatable)")
       ->check(CLI::Validator(
