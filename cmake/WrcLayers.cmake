@@ -7,7 +7,7 @@
 
 # The public headers of each library (include/wrc/).
 set(WRC_RUNTIME_PUBLIC_HEADERS wrc/runtime.h wrc/runtime.hpp)
-set(WRC_GENERATOR_PUBLIC_HEADERS wrc/generator.h)
+set(WRC_GENERATOR_PUBLIC_HEADERS wrc/generator.h wrc/interrupt.h)
 file(GLOB WRC_ALL_PUBLIC_HEADERS RELATIVE ${PROJECT_SOURCE_DIR}/include
      CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/include/wrc/*.h ${PROJECT_SOURCE_DIR}/include/wrc/*.hpp)
 set(WRC_CORE_PUBLIC_HEADERS ${WRC_ALL_PUBLIC_HEADERS})

@@ -22,7 +22,6 @@
 #include <utility>
 
 #include "generator/cluster.h"
-#include "generator/interrupt.h"
 #include "generator/journal.h"
 #include "generator/progress.h"
 #include "generator/refine.h"
@@ -31,6 +30,7 @@
 #include "generator/table_data.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/interrupt.h"
 #include "wrc/output_file.h"
 
 namespace wrc {

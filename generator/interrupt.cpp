@@ -1,4 +1,4 @@
-#include "generator/interrupt.h"
+#include "wrc/interrupt.h"
 
 #include <atomic>
 #include <csignal>

@@ -24,7 +24,6 @@
 #include <thread>
 #include <unordered_map>
 
-#include "generator/interrupt.h"
 #include "generator/journal.h"
 #include "generator/progress.h"
 #include "generator/refine.h"
@@ -32,6 +31,7 @@
 #include "generator/sweep.h"
 #include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
+#include "wrc/interrupt.h"
 #include "wrc/scene.h"
 
 namespace wrc::gen {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "generator/interrupt.h"
+#include "wrc/interrupt.h"
 
 namespace wrc::gen {
 

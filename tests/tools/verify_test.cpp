@@ -165,4 +165,27 @@ TEST(Verify, ANonPositiveSampleCountIsRefusedInWords) {
   }
 }
 
+// Ctrl-C stops the exact solves cleanly: a message saying how far it got, exit 130, no file.
+TEST(Verify, SigintStopsWithAMessageAndWritesNothing) {
+  const wrc::test_support::ScratchDir dir("wrc_verify_sigint");
+  const fs::path scene = WriteScene(dir.path(), 1.0);
+  const fs::path table = dir / "table.h5";
+  std::string out;
+  ASSERT_EQ(RunCommand(Wrc() + " generate '" + scene.string() + "' -o '" + table.string() +
+                           "' --quiet --threads 1",
+                       &out),
+            0);
+  // Far more samples than finish in the 2 s before the signal; the table opens in milliseconds.
+  const std::string verify = Wrc() + " verify '" + table.string() +
+                             "' --samples 100000 --threads 1 --csv '" + (dir / "out.csv").string() +
+                             "'";
+  const wrc::test_support::CommandResult run = wrc::test_support::RunCommand(
+      verify + " & pid=$!; sleep 2; kill -INT $pid; wait $pid", dir.path());
+  EXPECT_EQ(run.exit_code, 130) << run.err;
+  EXPECT_NE(run.err.find("wrc verify: interrupted after "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(" of 100000 exact solves; no report or file written"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+}
+
 }  // namespace

@@ -6,7 +6,13 @@
 namespace wrc::cli {
 
 /// Exit codes (docs/reference/cli.md): 0 ok or no contact, 2 bad input, 3 not converged.
-enum ExitCode : int { kExitOk = 0, kExitGateFailed = 1, kExitBadInput = 2, kExitNotConverged = 3 };
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitGateFailed = 1,
+  kExitBadInput = 2,
+  kExitNotConverged = 3,
+  kExitInterrupted = 130,  ///< SIGINT or SIGTERM, as a shell reports a process ended by SIGINT
+};
 
 /// Option checks that say in words what a value must be: CLI11's PositiveNumber and
 /// NonNegativeNumber state their range as "0.000000 to 1797693...(309 digits).000000".

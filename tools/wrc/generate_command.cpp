@@ -16,9 +16,6 @@
 namespace wrc::cli {
 namespace {
 
-// 128 + SIGINT, what shells report for a program stopped by Ctrl-C.
-constexpr int kExitInterrupted = 130;
-
 // One shell word, so that the printed resume command can be pasted as is.
 std::string ShellWord(const std::string& word) {
   if (word.find_first_of(" \t\n'\"\\$`*?[]{}()<>|&;#~!") == std::string::npos && !word.empty()) {

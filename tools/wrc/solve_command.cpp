@@ -1,6 +1,9 @@
 // `wrc solve CASE.toml [--json] [--out DIR]` (docs/reference/cli.md).
 
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -201,6 +204,36 @@ void WriteWheelRailFields(const std::filesystem::path& dir, const WheelRailResul
   WriteFileAtomically(dir / "summary.json", summary.dump(1) + '\n');
 }
 
+namespace {
+
+// Ctrl-C or SIGTERM during a solve ends it at once, with a message (and for --json an error
+// object) and exit 130: a solve cannot stop half-way, and nothing it writes is left half-written
+// under its final name (outputs go to NAME.tmp and are renamed into place; the next run removes a
+// leftover NAME.tmp). Only async-signal-safe calls in the handler.
+volatile std::sig_atomic_t g_interrupt_as_json = 0;
+
+extern "C" void OnSolveInterrupt(int) {
+  static const char kText[] = "wrc solve: interrupted\n";
+  static const char kJson[] = "{\"status\": \"error\", \"message\": \"interrupted\"}\n";
+  if (g_interrupt_as_json != 0 && ::write(STDOUT_FILENO, kJson, sizeof kJson - 1) < 0) {
+    // Nothing left to tell: the exit code says it.
+  }
+  if (::write(STDERR_FILENO, kText, sizeof kText - 1) < 0) {
+  }
+  ::_exit(kExitInterrupted);
+}
+
+void EndSolveOnInterrupt(bool as_json) {
+  g_interrupt_as_json = as_json ? 1 : 0;
+  struct sigaction action {};
+  action.sa_handler = OnSolveInterrupt;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+}  // namespace
+
 void AddSolveCommand(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand(
       "solve", "Solve one contact case (a case file, docs/reference/case-files.md)");
@@ -212,6 +245,7 @@ void AddSolveCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--out", *out_dir, "Also write the solution fields into this directory");
   cmd->callback([=]() {
     const auto t0 = std::chrono::steady_clock::now();
+    EndSolveOnInterrupt(*as_json);
     try {
       const Case c = LoadCase(*case_path);
       SolverStatus status;

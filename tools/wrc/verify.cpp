@@ -17,6 +17,7 @@
 #include "runtime/hdf5/table_schema.h"
 #include "wrc/errors.h"
 #include "wrc/generator.h"
+#include "wrc/interrupt.h"
 #include "wrc/profile.h"
 #include "wrc/runtime.hpp"
 #include "wrc/wheelrail.h"
@@ -333,9 +334,11 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
   values->assign(points.size(), {});
   status->assign(points.size(), 3);
   seconds->assign(points.size(), 0.0);
-  std::atomic<std::size_t> next{0};
+  gen::ClearInterrupt();
+  const gen::InterruptHandlers handlers;
+  std::atomic<std::size_t> next{0}, solved{0};
   auto worker = [&]() {
-    for (std::size_t k = next++; k < points.size(); k = next++) {
+    for (std::size_t k = next++; k < points.size() && !gen::InterruptRequested(); k = next++) {
       const auto t0 = std::chrono::steady_clock::now();
       try {
         const WheelRailResult r = SolveWheelRail(CaseAtPoint(scene, points[k]));
@@ -348,12 +351,14 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
         (*messages)[k] = e.what();
       }
       (*seconds)[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      ++solved;
     }
   };
   const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 0; t < n; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
+  if (gen::InterruptRequested()) throw Interrupted(solved, points.size());
 }
 
 Verification VerifyTable(const VerifyOptions& opt) {

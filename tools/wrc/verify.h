@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,18 @@ struct Verification {
 /// that cannot be read.
 Verification VerifyTable(const VerifyOptions& options);
 
+/// SIGINT or SIGTERM stopped the exact solves; nothing was written.
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted(std::size_t solved, std::size_t total)
+      : std::runtime_error("interrupted after " + std::to_string(solved) + " of " +
+                           std::to_string(total) + " exact solves; no report or file written") {}
+};
+
 /// Exact solves of the scene at the given points (all threads); each result holds the scene's
 /// outputs in order, status as in VerifiedPoint, and for a solve that threw, its message.
+/// Throws Interrupted when SIGINT or SIGTERM arrives: the solves in flight finish, no new
+/// one starts.
 void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& points, int threads,
                   std::vector<std::vector<double>>* values, std::vector<int>* status,
                   std::vector<double>* seconds, std::vector<std::string>* messages);

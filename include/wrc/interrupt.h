@@ -1,7 +1,9 @@
 #pragma once
-// SIGINT/SIGTERM during `wrc generate`: the first signal asks the run to stop cleanly (workers
-// take no new points, the journal is flushed); the handler then reverts to the default action,
-// so a second Ctrl-C ends the process at once (finished points are in the journal either way).
+/// @file interrupt.h
+/// SIGINT/SIGTERM during a long run (`wrc generate`, `wrc verify`): the first signal asks the
+/// run to stop cleanly (workers take no new points; the generator flushes its journal); the
+/// handler then reverts to the default action, so a second Ctrl-C ends the process at once.
+/// Part of the generator library.
 
 namespace wrc::gen {
 
