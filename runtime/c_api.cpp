@@ -88,7 +88,7 @@ int wrc_table_open(const char* path, wrc_table** out) {
   try {
     *out = new wrc_table{wrc::runtime::Table::Load(path)};
     return 0;
-  } catch (const wrc::runtime::LoadError& error) {
+  } catch (const wrc::TableError& error) {
     SetLastError("wrc_table_open: %s", error.what());
     return error.code();
   } catch (const wrc::h5::Error& error) {  // An HDF5 failure while reading a valid-looking file.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "wrc/runtime.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::runtime {
 
@@ -25,16 +26,6 @@ struct Kernels;  // kernels.h
 /// kernel reads whole chunks of 8 and may run up to 7 doubles past the last datum (kernels.inc).
 /// (The cubic kernel reads exactly its cell's data.)
 constexpr std::size_t kReadPadding = 8;
-
-/// A loading failure with its WRC_ERR_* code; what() names file, object and problem.
-class LoadError : public std::runtime_error {
- public:
-  LoadError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
-  int code() const noexcept { return code_; }
-
- private:
-  int code_;
-};
 
 /// Records the calling thread's error message (printf-style; never allocates). Implemented in
 /// c_api.cpp next to wrc_last_error().
@@ -68,7 +59,8 @@ enum CellFlag : std::uint8_t {
 
 class Table {
  public:
-  /// Reads and validates the file; throws LoadError.
+  /// Reads and validates the file; throws TableError (wrc/runtime.hpp) with the WRC_ERR_* code
+  /// and a message naming file, object and problem.
   static Table Load(const std::string& path);
 
   // Move-only: lookup_ points into the axes' vectors, whose buffers survive moves, not copies.

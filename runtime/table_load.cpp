@@ -49,7 +49,7 @@ constexpr h5::Size kMaxAxisNodes = h5::Size{1} << 24;
 constexpr h5::Size kMaxTableNodes = h5::Size{1} << 32;
 
 [[noreturn]] void Invalid(const std::string& where, const std::string& problem) {
-  throw LoadError(WRC_ERR_FORMAT, where + ": " + problem);
+  throw TableError(WRC_ERR_FORMAT, where + ": " + problem);
 }
 
 const char* TypeName(h5::ElementType type) {
@@ -245,18 +245,18 @@ void Table::CornerOffsets(std::size_t node_block, std::size_t (*offset)[kMaxHalf
 Table Table::Load(const std::string& path) {
   std::error_code ignored;
   if (!std::filesystem::exists(path, ignored)) {
-    throw LoadError(WRC_ERR_FILE, path + ": no such file");
+    throw TableError(WRC_ERR_FILE, path + ": no such file");
   }
   // HDF5 would block on a FIFO and read a device without end: regular files only.
   if (!std::filesystem::is_regular_file(path, ignored)) {
-    throw LoadError(WRC_ERR_FILE, path + ": not a regular file");
+    throw TableError(WRC_ERR_FILE, path + ": not a regular file");
   }
   const auto lock = h5::LibraryLock();
   std::optional<h5::File> opened;
   try {
     opened.emplace(h5::File::Open(path));
   } catch (const h5::Error& error) {
-    throw LoadError(WRC_ERR_FILE, std::string(error.what()));
+    throw TableError(WRC_ERR_FILE, std::string(error.what()));
   }
   const h5::File& file = *opened;
   const std::string where = path + ":";
