@@ -17,12 +17,12 @@
 #include <iostream>
 #include <vector>
 
-#include "wrc/grid.h"
-#include "wrc/hertz.h"
-#include "wrc/influence_operator.h"
-#include "wrc/material.h"
-#include "wrc/normal_solver.h"
-#include "wrc/tangential_solver.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/hertz.h"
+#include "wrc/core/influence_operator.h"
+#include "wrc/core/material.h"
+#include "wrc/core/normal_solver.h"
+#include "wrc/core/tangential_solver.h"
 
 namespace {
 

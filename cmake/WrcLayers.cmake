@@ -1,23 +1,19 @@
 # Include paths that enforce the layers (docs/design.md). Each part of wrc compiles against a
 # directory of its own in the build tree that holds symbolic links to exactly the headers it may
 # include: its own sources, and the public headers of the parts below it. An include of another
-# part's internals (say "core/..." from the runtime, or "wrc/generator.h" from core) then fails
-# to compile instead of silently adding a dependency. Tests and benchmarks, which test internals,
-# keep the whole source tree on their path.
+# part's internals (say "core/..." from the runtime, or "wrc/generator/generator.h" from core)
+# then fails to compile instead of silently adding a dependency. Tests and benchmarks, which
+# test internals, keep the whole source tree on their path.
 
-# The public headers of each library (include/wrc/).
+# The public headers of each library: include/wrc/runtime.h(pp) for the runtime (installed with
+# it), include/wrc/core/ for the solver, include/wrc/generator/ for the generator.
 set(WRC_RUNTIME_PUBLIC_HEADERS wrc/runtime.h wrc/runtime.hpp)
-set(WRC_GENERATOR_PUBLIC_HEADERS wrc/generator.h wrc/interrupt.h)
-file(GLOB WRC_ALL_PUBLIC_HEADERS RELATIVE ${PROJECT_SOURCE_DIR}/include
-     CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/include/wrc/*.h ${PROJECT_SOURCE_DIR}/include/wrc/*.hpp)
-set(WRC_CORE_PUBLIC_HEADERS ${WRC_ALL_PUBLIC_HEADERS})
-list(REMOVE_ITEM WRC_CORE_PUBLIC_HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS}
-     ${WRC_GENERATOR_PUBLIC_HEADERS})
 
 # wrc_layer(NAME DIRS dir... HEADERS header...): the directory
 # ${PROJECT_BINARY_DIR}/layers/NAME with links to the source directories DIRS (relative to the
-# project root, e.g. runtime/hdf5) and to the public HEADERS (relative to include/, e.g.
-# wrc/runtime.h). Sets WRC_LAYER_<NAME> to the directory.
+# project root, e.g. runtime/hdf5, or to include/ when they start with wrc/, e.g. wrc/core) and
+# to the public HEADERS (relative to include/, e.g. wrc/runtime.h). Sets WRC_LAYER_<NAME> to
+# the directory.
 function(wrc_layer name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "DIRS;HEADERS")
   set(root ${PROJECT_BINARY_DIR}/layers/${name})
@@ -25,7 +21,11 @@ function(wrc_layer name)
   foreach(dir IN LISTS arg_DIRS)
     get_filename_component(parent ${root}/${dir} DIRECTORY)
     file(MAKE_DIRECTORY ${parent})
-    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${dir} ${root}/${dir} SYMBOLIC)
+    if(dir MATCHES "^wrc/")
+      file(CREATE_LINK ${PROJECT_SOURCE_DIR}/include/${dir} ${root}/${dir} SYMBOLIC)
+    else()
+      file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${dir} ${root}/${dir} SYMBOLIC)
+    endif()
   endforeach()
   foreach(header IN LISTS arg_HEADERS)
     get_filename_component(parent ${root}/${header} DIRECTORY)
@@ -40,9 +40,9 @@ endfunction()
 wrc_layer(hdf5 DIRS runtime/hdf5)
 wrc_layer(runtime_public HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(runtime DIRS runtime HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
-wrc_layer(core_public HEADERS ${WRC_CORE_PUBLIC_HEADERS})
+wrc_layer(core_public DIRS wrc/core)
 # The scene parser checks axes against the runtime's limits (wrc/runtime.h, plain C constants).
-wrc_layer(core DIRS core HEADERS ${WRC_CORE_PUBLIC_HEADERS} wrc/runtime.h)
-wrc_layer(generator_public HEADERS ${WRC_GENERATOR_PUBLIC_HEADERS})
+wrc_layer(core DIRS core wrc/core HEADERS wrc/runtime.h)
+wrc_layer(generator_public DIRS wrc/generator)
 wrc_layer(generator DIRS generator)
 wrc_layer(tools DIRS tools)

@@ -1,4 +1,4 @@
-#include "wrc/coupled_solver.h"
+#include "wrc/core/coupled_solver.h"
 
 #include <algorithm>
 #include <cmath>

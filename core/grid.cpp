@@ -1,4 +1,4 @@
-#include "wrc/grid.h"
+#include "wrc/core/grid.h"
 
 #include <cmath>
 #include <string>

@@ -1,13 +1,13 @@
-#include "wrc/halfspace.h"
+#include "wrc/core/halfspace.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
-#include "wrc/coupled_solver.h"
-#include "wrc/errors.h"
-#include "wrc/hertz.h"
+#include "wrc/core/coupled_solver.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/hertz.h"
 
 namespace wrc {
 namespace {

@@ -1,4 +1,4 @@
-#include "wrc/hertz.h"
+#include "wrc/core/hertz.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "wrc/influence.h"
+#include "wrc/core/influence.h"
 
 #include <array>
 #include <cmath>

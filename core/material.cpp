@@ -1,4 +1,4 @@
-#include "wrc/material.h"
+#include "wrc/core/material.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "wrc/normal_solver.h"
+#include "wrc/core/normal_solver.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "wrc/solver_status.h"
+#include "wrc/core/solver_status.h"
 
 namespace wrc {
 

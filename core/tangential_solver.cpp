@@ -1,4 +1,4 @@
-#include "wrc/tangential_solver.h"
+#include "wrc/core/tangential_solver.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -28,10 +28,10 @@
 #include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "generator/table_data.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
-#include "wrc/interrupt.h"
-#include "wrc/output_file.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
+#include "wrc/generator/generator.h"
+#include "wrc/generator/interrupt.h"
 
 namespace wrc {
 namespace {

@@ -1,4 +1,4 @@
-#include "wrc/interrupt.h"
+#include "wrc/generator/interrupt.h"
 
 #include <atomic>
 #include <csignal>

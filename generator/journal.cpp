@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::gen {
 namespace {

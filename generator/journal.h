@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::gen {
 

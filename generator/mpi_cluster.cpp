@@ -6,7 +6,7 @@
 #include <string>
 
 #include "generator/cluster.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 #ifdef WRC_HAVE_MPI
 // The C API only: Open MPI's and MPICH's mpi.h otherwise pull in the deprecated C++ bindings,

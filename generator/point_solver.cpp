@@ -8,8 +8,8 @@
 #include <limits>
 #include <utility>
 
-#include "wrc/errors.h"
-#include "wrc/generator.h"
+#include "wrc/core/errors.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::gen {
 

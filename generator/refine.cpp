@@ -30,9 +30,9 @@
 #include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "runtime/hdf5/table_schema.h"
-#include "wrc/errors.h"
-#include "wrc/interrupt.h"
-#include "wrc/scene.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
+#include "wrc/generator/interrupt.h"
 
 namespace wrc::gen {
 namespace {

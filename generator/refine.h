@@ -20,7 +20,7 @@
 
 #include "generator/cluster.h"
 #include "generator/table_data.h"
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::gen {
 

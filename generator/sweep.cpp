@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "wrc/interrupt.h"
+#include "wrc/generator/interrupt.h"
 
 namespace wrc::gen {
 

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::gen {
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::gen {
 

@@ -8,8 +8,8 @@
 
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
+#include "wrc/core/errors.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc {
 namespace {

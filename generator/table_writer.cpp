@@ -9,7 +9,7 @@
 #include "generator/table_data.h"
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::gen {
 namespace {

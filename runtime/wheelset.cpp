@@ -116,7 +116,7 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
   w.table = table;
   w.velocity = *velocity;
   w.nominal_radius = SceneNumber(scene, "wheelset", "nominal_radius").value_or(460.0);
-  // The solver's defaults (include/wrc/case.h) where the scene leaves them out.
+  // The solver's defaults (include/wrc/core/case.h) where the scene leaves them out.
   w.lever = 0.5 * SceneNumber(scene, "wheelset", "flange_back_distance").value_or(1360.0) -
             SceneNumber(scene, "wheelset", "flange_back_position").value_or(-70.0);
   const std::string table_side = SceneString(scene, "wheelset", "side").value_or("right");

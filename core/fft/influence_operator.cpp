@@ -1,4 +1,4 @@
-#include "wrc/influence_operator.h"
+#include "wrc/core/influence_operator.h"
 
 #include <algorithm>
 #include <cmath>

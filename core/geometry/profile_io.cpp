@@ -16,8 +16,8 @@
 
 #include "core/geometry/profile_internal.h"
 #include "core/io/case_parser.h"
-#include "wrc/errors.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace profile_detail {

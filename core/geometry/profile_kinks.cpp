@@ -7,7 +7,7 @@
 
 #include "core/common/numbers.h"
 #include "core/geometry/profile_internal.h"
-#include "wrc/profile.h"
+#include "wrc/core/profile.h"
 
 namespace wrc::profile_detail {
 namespace {

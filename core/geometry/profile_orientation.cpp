@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "wrc/profile.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace {

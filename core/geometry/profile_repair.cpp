@@ -10,8 +10,8 @@
 
 #include "core/common/numbers.h"
 #include "core/geometry/profile_internal.h"
-#include "wrc/errors.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "core/geometry/profile_internal.h"
 #include "core/gsl/spline.h"
-#include "wrc/errors.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace {

@@ -16,10 +16,10 @@
 #include <tuple>
 
 #include "core/io/case_parser.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/grid.h"
-#include "wrc/profile.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace io {

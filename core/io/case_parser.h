@@ -9,8 +9,8 @@
 
 #include <toml++/toml.h>
 
-#include "wrc/case.h"
-#include "wrc/toml_reader.h"
+#include "wrc/core/case.h"
+#include "wrc/core/toml_reader.h"
 
 namespace wrc::io {
 

@@ -1,7 +1,7 @@
-// Safe output files (include/wrc/output_file.h), on POSIX descriptors: the standard streams
+// Safe output files (include/wrc/core/output_file.h), on POSIX descriptors: the standard streams
 // cannot open exclusively, refuse symlinks or report a failed close.
 
-#include "wrc/output_file.h"
+#include "wrc/core/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,7 +13,7 @@
 #include <iostream>
 #include <string>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc {
 namespace {

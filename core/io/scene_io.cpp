@@ -11,9 +11,9 @@
 #include <tuple>
 
 #include "core/io/case_parser.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
 #include "wrc/runtime.h"
-#include "wrc/scene.h"
 
 namespace wrc {
 namespace io {

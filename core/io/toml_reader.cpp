@@ -1,10 +1,10 @@
-#include "wrc/toml_reader.h"
+#include "wrc/core/toml_reader.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::io {
 namespace {

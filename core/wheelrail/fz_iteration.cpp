@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::wr {
 namespace {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::wr {
 namespace {

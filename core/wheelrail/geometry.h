@@ -10,8 +10,8 @@
 #include <memory>
 #include <optional>
 
-#include "wrc/case.h"
-#include "wrc/profile.h"
+#include "wrc/core/case.h"
+#include "wrc/core/profile.h"
 
 namespace wrc::wr {
 

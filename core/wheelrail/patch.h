@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/wheelrail/contact_search.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::wr {
 

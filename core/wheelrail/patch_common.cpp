@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "wrc/coupled_solver.h"
-#include "wrc/errors.h"
+#include "wrc/core/coupled_solver.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::wr {
 

@@ -1,4 +1,4 @@
-#include "wrc/profile_placement.h"
+#include "wrc/core/profile_placement.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/wheelrail/contact_search.h"
 #include "core/wheelrail/geometry.h"
-#include "wrc/profile.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace {

@@ -11,9 +11,9 @@
 #include "core/wheelrail/fz_iteration.h"
 #include "core/wheelrail/geometry.h"
 #include "core/wheelrail/patch.h"
-#include "wrc/errors.h"
-#include "wrc/hertz.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/hertz.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -1,6 +1,6 @@
 // Normal–tangential coupling of dissimilar bodies (K != 0) by the Panagiotopoulos process.
 
-#include "wrc/coupled_solver.h"
+#include "wrc/core/coupled_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
-#include "wrc/case.h"
-#include "wrc/halfspace.h"
-#include "wrc/influence.h"
+#include "wrc/core/case.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/influence.h"
 
 namespace wrc {
 namespace {

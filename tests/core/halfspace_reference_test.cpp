@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "wrc/case.h"
-#include "wrc/halfspace.h"
+#include "wrc/core/case.h"
+#include "wrc/core/halfspace.h"
 
 namespace wrc {
 namespace {

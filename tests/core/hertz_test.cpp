@@ -1,7 +1,7 @@
-// Tests of the Hertz solution (include/wrc/hertz.h) against the Hertz values printed in the
+// Tests of the Hertz solution (include/wrc/core/hertz.h) against the Hertz values printed in the
 // header comments of the reference half-space cases, and against closed-form special cases.
 
-#include "wrc/hertz.h"
+#include "wrc/core/hertz.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "core/gsl/elliptic.h"
-#include "wrc/material.h"
+#include "wrc/core/material.h"
 
 namespace wrc {
 namespace {

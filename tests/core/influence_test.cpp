@@ -1,8 +1,8 @@
-// Tests of the closed-form rectangle influence coefficients (include/wrc/influence.h,
+// Tests of the closed-form rectangle influence coefficients (include/wrc/core/influence.h,
 // core/influence.cpp) against 2-D adaptive quadrature of the point-load kernels, plus their
 // symmetries, the far-field limit and the decoupling of identical bodies.
 
-#include "wrc/influence.h"
+#include "wrc/core/influence.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "core/gsl/integration.h"
-#include "wrc/grid.h"
-#include "wrc/material.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/material.h"
 
 namespace wrc {
 namespace {

@@ -9,9 +9,9 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "wrc/case.h"
-#include "wrc/halfspace.h"
-#include "wrc/hertz.h"
+#include "wrc/core/case.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/hertz.h"
 
 namespace wrc {
 namespace {

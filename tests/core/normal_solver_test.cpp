@@ -1,4 +1,4 @@
-#include "wrc/normal_solver.h"
+#include "wrc/core/normal_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tests/support/near.h"
-#include "wrc/influence_operator.h"
+#include "wrc/core/influence_operator.h"
 
 namespace wrc {
 namespace {

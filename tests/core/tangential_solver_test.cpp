@@ -1,11 +1,11 @@
-#include "wrc/tangential_solver.h"
+#include "wrc/core/tangential_solver.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "wrc/normal_solver.h"
+#include "wrc/core/normal_solver.h"
 
 namespace wrc {
 namespace {

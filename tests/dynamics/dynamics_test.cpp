@@ -15,10 +15,10 @@
 #include "tools/dynamics/analysis.h"
 #include "tools/dynamics/forces.h"
 #include "tools/dynamics/model.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
-#include "wrc/scene.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::dynamics {
 namespace {

@@ -1,7 +1,7 @@
-// libFuzzer target for the case parser (include/wrc/case.h): arbitrary bytes as case file text.
-// wrc::InputError is the expected answer to bad input; any other exception escapes and aborts,
-// so that libFuzzer reports it together with the input. An accepted case must hold the values
-// that ParseCase promises to have validated.
+// libFuzzer target for the case parser (include/wrc/core/case.h): arbitrary bytes as case file
+// text. wrc::InputError is the expected answer to bad input; any other exception escapes and
+// aborts, so that libFuzzer reports it together with the input. An accepted case must hold the
+// values that ParseCase promises to have validated.
 
 #include <cmath>
 #include <cstddef>
@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "wrc/case.h"
-#include "wrc/errors.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
 
 namespace {
 

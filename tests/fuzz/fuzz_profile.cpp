@@ -1,6 +1,6 @@
-// libFuzzer target for the profile readers (include/wrc/profile.h): arbitrary bytes as a profile
-// file of each format, read as a rail and as a wheel, repaired, and, when that succeeds, turned
-// into a ProfileSpline that is evaluated at a few places.
+// libFuzzer target for the profile readers (include/wrc/core/profile.h): arbitrary bytes as a
+// profile file of each format, read as a rail and as a wheel, repaired, and, when that succeeds,
+// turned into a ProfileSpline that is evaluated at a few places.
 //
 // Input layout: byte 0 selects the file name extension (byte % 5: .prr .prw .ban .whl .csv) and
 // two options ((byte / 5) bit 0: smoothing 2 mm, bit 1: mirror_y); the remaining bytes are the
@@ -16,8 +16,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "wrc/errors.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// libFuzzer target for the scene parser (include/wrc/scene.h): arbitrary bytes as scene file
+// libFuzzer target for the scene parser (include/wrc/core/scene.h): arbitrary bytes as scene file
 // text; an accepted scene is also expanded at its first and last grid node. wrc::InputError is
 // the expected answer to bad input; any other exception escapes and aborts, so that libFuzzer
 // reports it together with the input.
@@ -11,8 +11,8 @@
 #include <string_view>
 #include <vector>
 
-#include "wrc/errors.h"
-#include "wrc/scene.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include "generator/sha256.h"
 #include "tests/generator/generator_test_util.h"
 #include "tests/runtime/table_writer.h"
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::test {
 namespace {

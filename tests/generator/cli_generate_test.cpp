@@ -17,9 +17,9 @@
 
 #include "generator/journal.h"
 #include "tests/generator/generator_test_util.h"
-#include "wrc/generator.h"
-#include "wrc/scene.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
 
 extern char** environ;
 

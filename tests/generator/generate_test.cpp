@@ -12,11 +12,11 @@
 #include "generator/sha256.h"
 #include "runtime/hdf5/hdf5.h"
 #include "tests/generator/generator_test_util.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
-#include "wrc/scene.h"
-#include "wrc/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "generator/journal.h"
 #include "tests/generator/generator_test_util.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::gen {
 namespace {

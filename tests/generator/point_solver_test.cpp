@@ -7,8 +7,8 @@
 #include <string>
 
 #include "tests/generator/generator_test_util.h"
-#include "wrc/generator.h"
-#include "wrc/scene.h"
+#include "wrc/core/scene.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc {
 namespace {

@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "generator/sha256.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
+#include "wrc/core/errors.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc {
 namespace {

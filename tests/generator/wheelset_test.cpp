@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "tests/generator/generator_test_util.h"
-#include "wrc/generator.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
-#include "wrc/scene.h"
-#include "wrc/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "wrc/errors.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::dynamics {
 namespace {

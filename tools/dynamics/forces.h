@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "tools/dynamics/model.h"
-#include "wrc/case.h"
+#include "wrc/core/case.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::dynamics {

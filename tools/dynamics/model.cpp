@@ -12,8 +12,8 @@
 #include <string_view>
 #include <utility>
 
-#include "wrc/errors.h"
-#include "wrc/toml_reader.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/toml_reader.h"
 
 namespace wrc::dynamics {
 namespace {

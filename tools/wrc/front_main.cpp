@@ -20,7 +20,7 @@
 #include <system_error>
 
 #include "tools/wrc/commands.h"
-#include "wrc/output_file.h"
+#include "wrc/core/output_file.h"
 
 namespace {
 

@@ -8,10 +8,10 @@
 #include <string>
 
 #include "tools/wrc/commands.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
-#include "wrc/output_file.h"
-#include "wrc/scene.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
+#include "wrc/core/scene.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::cli {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
-#include "wrc/generator.h"
+#include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {

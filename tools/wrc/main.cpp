@@ -6,7 +6,7 @@
 
 #include "runtime/hdf5/hdf5.h"
 #include "tools/wrc/commands.h"
-#include "wrc/output_file.h"
+#include "wrc/core/output_file.h"
 
 int main(int argc, char** argv) {
   wrc::h5::SkipLibraryTermination();  // every file is closed explicitly (hdf5.h)

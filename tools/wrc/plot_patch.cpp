@@ -16,10 +16,10 @@
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/plot.h"
 #include "tools/wrc/solve_output.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/halfspace.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::cli {
 namespace {

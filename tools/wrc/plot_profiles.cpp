@@ -15,11 +15,11 @@
 
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/plot.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/profile.h"
-#include "wrc/profile_placement.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
+#include "wrc/core/profile_placement.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::cli {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/plot.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {

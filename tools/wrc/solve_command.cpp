@@ -14,11 +14,11 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/solve_output.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/halfspace.h"
-#include "wrc/output_file.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/output_file.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::cli {
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "wrc/halfspace.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::cli {
 

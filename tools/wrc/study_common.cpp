@@ -12,7 +12,7 @@
 
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/shipped_files.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::cli {
 

@@ -16,13 +16,13 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
-#include "wrc/halfspace.h"
-#include "wrc/scene.h"
-#include "wrc/solver_status.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/halfspace.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/solver_status.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
 
 namespace wrc::cli {
 namespace {

@@ -24,7 +24,7 @@
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/verify.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {

@@ -17,8 +17,8 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/study_common.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::cli {
 namespace {

@@ -19,10 +19,10 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/study_common.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/profile.h"
-#include "wrc/toml_reader.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
+#include "wrc/core/toml_reader.h"
 
 namespace wrc::cli {
 namespace {

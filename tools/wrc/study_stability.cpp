@@ -19,9 +19,9 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc::cli {
 namespace {

@@ -15,12 +15,12 @@
 
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
-#include "wrc/errors.h"
-#include "wrc/generator.h"
-#include "wrc/interrupt.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
+#include "wrc/core/wheelrail.h"
+#include "wrc/generator/generator.h"
+#include "wrc/generator/interrupt.h"
 #include "wrc/runtime.hpp"
-#include "wrc/wheelrail.h"
 
 namespace wrc::cli {
 namespace {

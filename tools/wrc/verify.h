@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "wrc/scene.h"
+#include "wrc/core/scene.h"
 
 namespace wrc::cli {
 

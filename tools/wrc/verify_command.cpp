@@ -19,8 +19,8 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/verify.h"
-#include "wrc/errors.h"
-#include "wrc/output_file.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "wrc/errors.h"
-#include "wrc/profile.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 namespace {

@@ -1,7 +1,7 @@
-// Tests of the profile readers, repairs and the arc-length spline (include/wrc/profile.h) and of
-// the GSL spline wrapper underneath (core/gsl/spline.h).
+// Tests of the profile readers, repairs and the arc-length spline (include/wrc/core/profile.h) and
+// of the GSL spline wrapper underneath (core/gsl/spline.h).
 
-#include "wrc/profile.h"
+#include "wrc/core/profile.h"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@
 #include "core/geometry/profile_internal.h"
 #include "core/gsl/error.h"
 #include "core/gsl/spline.h"
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc {
 namespace {

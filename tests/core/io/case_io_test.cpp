@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "wrc/case.h"
-#include "wrc/errors.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
 
 namespace wrc {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "wrc/errors.h"
-#include "wrc/scene.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
 
 namespace wrc {
 namespace {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "wrc/case.h"
+#include "wrc/core/case.h"
 
 namespace wrc::wr {
 namespace {

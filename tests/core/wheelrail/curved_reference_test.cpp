@@ -9,8 +9,8 @@
 #include <functional>
 #include <sstream>
 
-#include "wrc/case.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "wrc/case.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -10,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::wr {
 namespace {

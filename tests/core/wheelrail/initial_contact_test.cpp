@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "wrc/case.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/wheelrail/patch_common.h"
-#include "wrc/case.h"
+#include "wrc/core/case.h"
 
 namespace wrc::wr {
 namespace {

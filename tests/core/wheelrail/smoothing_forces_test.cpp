@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "wrc/case.h"
-#include "wrc/profile.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/profile.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "wrc/case.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "wrc/case.h"
-#include "wrc/errors.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/case.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 namespace {

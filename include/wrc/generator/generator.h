@@ -26,9 +26,9 @@
 #include <utility>
 #include <vector>
 
-#include "wrc/errors.h"
-#include "wrc/scene.h"
-#include "wrc/wheelrail.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/scene.h"
+#include "wrc/core/wheelrail.h"
 
 namespace wrc {
 

@@ -14,7 +14,7 @@
 
 #include <toml++/toml.h>
 
-#include "wrc/errors.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::io {
 
@@ -22,7 +22,7 @@ namespace wrc::io {
 /// arrays element by element (abbreviated when long), tables as "{...}".
 std::string DescribeValue(const toml::node& node);
 
-/// A number in its shortest exact form ("0.1", "-20", "1e+12", "nan"); see wrc/errors.h.
+/// A number in its shortest exact form ("0.1", "-20", "1e+12", "nan"); see wrc/core/errors.h.
 using wrc::FormatNumber;
 
 /// Edit distance (insertions, deletions, substitutions and swaps of neighbours), used to

@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
-#include "wrc/grid.h"
-#include "wrc/influence.h"
-#include "wrc/material.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/influence.h"
+#include "wrc/core/material.h"
 
 namespace wrc {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "wrc/case.h"
-#include "wrc/grid.h"
-#include "wrc/normal_solver.h"
-#include "wrc/tangential_solver.h"
+#include "wrc/core/case.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/normal_solver.h"
+#include "wrc/core/tangential_solver.h"
 
 namespace wrc {
 

@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "wrc/grid.h"
-#include "wrc/material.h"
+#include "wrc/core/grid.h"
+#include "wrc/core/material.h"
 
 namespace wrc {
 

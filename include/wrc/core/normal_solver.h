@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "wrc/influence_operator.h"
-#include "wrc/solver_status.h"
+#include "wrc/core/influence_operator.h"
+#include "wrc/core/solver_status.h"
 
 namespace wrc {
 

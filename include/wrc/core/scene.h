@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-#include "wrc/case.h"
+#include "wrc/core/case.h"
 
 namespace wrc {
 

@@ -14,8 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "wrc/material.h"
-#include "wrc/profile.h"
+#include "wrc/core/material.h"
+#include "wrc/core/profile.h"
 
 namespace wrc {
 

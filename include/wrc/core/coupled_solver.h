@@ -9,10 +9,10 @@
 #include <memory>
 #include <vector>
 
-#include "wrc/influence_operator.h"
-#include "wrc/normal_solver.h"
-#include "wrc/solver_status.h"
-#include "wrc/tangential_solver.h"
+#include "wrc/core/influence_operator.h"
+#include "wrc/core/normal_solver.h"
+#include "wrc/core/solver_status.h"
+#include "wrc/core/tangential_solver.h"
 
 namespace wrc {
 

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "wrc/case.h"
+#include "wrc/core/case.h"
 
 namespace wrc {
 
