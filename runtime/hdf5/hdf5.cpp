@@ -64,60 +64,37 @@ std::string AttributeWhere(const std::string& object_where, const std::string& n
   return object_where + " attribute '" + name + "'";
 }
 
-hid_t NativeType(ElementType type) {
+// The HDF5 types of an element type: in memory, and on disk in both byte orders. Tables are
+// written little-endian whatever the machine, so files are byte-identical across platforms.
+struct TypesOf {
+  hid_t native, little_endian, big_endian;
+};
+
+TypesOf HdfTypes(ElementType type) {
   switch (type) {
     case ElementType::kFloat64:
-      return H5T_NATIVE_DOUBLE;
+      return {H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, H5T_IEEE_F64BE};
     case ElementType::kFloat32:
-      return H5T_NATIVE_FLOAT;
+      return {H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, H5T_IEEE_F32BE};
     case ElementType::kInt8:
-      return H5T_NATIVE_INT8;
+      return {H5T_NATIVE_INT8, H5T_STD_I8LE, H5T_STD_I8BE};
     case ElementType::kUInt8:
-      return H5T_NATIVE_UINT8;
+      return {H5T_NATIVE_UINT8, H5T_STD_U8LE, H5T_STD_U8BE};
     case ElementType::kInt32:
-      return H5T_NATIVE_INT32;
+      return {H5T_NATIVE_INT32, H5T_STD_I32LE, H5T_STD_I32BE};
     case ElementType::kInt64:
-      return H5T_NATIVE_INT64;
+      return {H5T_NATIVE_INT64, H5T_STD_I64LE, H5T_STD_I64BE};
   }
-  return H5T_NATIVE_DOUBLE;
+  return {H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, H5T_IEEE_F64BE};
 }
 
-// Little-endian on disk whatever the machine, so files are byte-identical across platforms.
-hid_t FileType(ElementType type) {
-  switch (type) {
-    case ElementType::kFloat64:
-      return H5T_IEEE_F64LE;
-    case ElementType::kFloat32:
-      return H5T_IEEE_F32LE;
-    case ElementType::kInt8:
-      return H5T_STD_I8LE;
-    case ElementType::kUInt8:
-      return H5T_STD_U8LE;
-    case ElementType::kInt32:
-      return H5T_STD_I32LE;
-    case ElementType::kInt64:
-      return H5T_STD_I64LE;
-  }
-  return H5T_IEEE_F64LE;
-}
+hid_t NativeType(ElementType type) { return HdfTypes(type).native; }
+hid_t FileType(ElementType type) { return HdfTypes(type).little_endian; }
 
 // The standard file types of an element type, in both byte orders.
 std::pair<hid_t, hid_t> StandardTypes(ElementType type) {
-  switch (type) {
-    case ElementType::kFloat64:
-      return {H5T_IEEE_F64LE, H5T_IEEE_F64BE};
-    case ElementType::kFloat32:
-      return {H5T_IEEE_F32LE, H5T_IEEE_F32BE};
-    case ElementType::kInt8:
-      return {H5T_STD_I8LE, H5T_STD_I8BE};
-    case ElementType::kUInt8:
-      return {H5T_STD_U8LE, H5T_STD_U8BE};
-    case ElementType::kInt32:
-      return {H5T_STD_I32LE, H5T_STD_I32BE};
-    case ElementType::kInt64:
-      return {H5T_STD_I64LE, H5T_STD_I64BE};
-  }
-  return {H5T_IEEE_F64LE, H5T_IEEE_F64BE};
+  const TypesOf t = HdfTypes(type);
+  return {t.little_endian, t.big_endian};
 }
 
 constexpr ElementType kAllElementTypes[] = {ElementType::kFloat64, ElementType::kFloat32,
