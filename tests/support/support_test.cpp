@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/case_builder.h"
 #include "tests/support/files.h"
 #include "tests/support/near.h"
 #include "tests/support/run.h"
@@ -49,6 +50,28 @@ TEST(RunCommand, CapturesBothStreamsAndTheExitCodeAndEndsAHang) {
   EXPECT_EQ(result.out, "out\n");
   EXPECT_EQ(result.err, "err\n");
   EXPECT_EQ(RunCommand("sleep 30", dir.path(), 1).exit_code, 124);
+}
+
+TEST(CaseBuilder, SetsReplacesAddsAndRemovesKeysBySection) {
+  const std::string text = CaseBuilder("[grid]\ndx = 0.5\nds = 0.5\n[state]\ny = 1.0\n")
+                               .Set("grid", "dx", "0.25")
+                               .Set("state", "yaw", "0.002")
+                               .Set("friction", "mu", "0.3")
+                               .Remove("grid", "ds")
+                               .Remove("state", "absent")
+                               .Text();
+  EXPECT_EQ(text, "[grid]\ndx = 0.25\n[state]\nyaw = 0.002\ny = 1.0\n[friction]\nmu = 0.3\n");
+}
+
+TEST(CaseBuilder, AShippedCaseSolvesFromAnyDirectory) {
+  const ScratchDir dir("wrc_support_case");
+  const std::string text = CaseBuilder::Shipped("mbench_case.toml").Text();
+  EXPECT_EQ(text.find("\"profiles/"), std::string::npos) << text;
+  const auto path = CaseBuilder::Shipped("mbench_case.toml").Write(dir / "case.toml");
+  const CommandResult solve = RunCommand(
+      Quoted(WrcBinary().string()) + " solve " + Quoted(path.string()) + " --json", dir.path());
+  EXPECT_EQ(solve.exit_code, 0) << solve.err;
+  EXPECT_NE(solve.out.find("\"status\": \"ok\""), std::string::npos) << solve.out;
 }
 
 }  // namespace
