@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <string>
 
 #include "tests/support/case_builder.h"
@@ -51,6 +52,33 @@ TEST(SolveInterrupt, WithJsonStdoutHoldsAnErrorObject) {
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j.at("status"), "error");
   EXPECT_EQ(j.at("message"), "interrupted");
+}
+
+// An interrupted refinement tells how many solves it keeps (over grid passes and midpoint
+// samples, not a pass's share of them) and where.
+TEST(GenerateInterrupt, ARefinementRunTellsWhatItKeeps) {
+  const ScratchDir dir("wrc_generate_sigint");
+  const fs::path scene = CaseBuilder::Shipped("mbench_small.toml")
+                             .Set("table.refine", "target", "0.01")
+                             .Set("table.refine", "max_points", "40000")
+                             .Write(dir / "refine.toml");
+  const fs::path table = dir / "refined.h5";
+  const std::string generate = Quoted(WrcBinary().string()) + " generate " +
+                               Quoted(scene.string()) + " -o " + Quoted(table.string()) +
+                               " --threads 1 --quiet";
+  // Signalled once the refinement has started writing (the handlers are in place by then); the
+  // whole run takes minutes, so it is still going.
+  const CommandResult run =
+      RunCommand(generate + " & pid=$!; while [ ! -d " + Quoted(table.string() + ".refine") +
+                     " ]; do sleep 0.1; done; sleep 1; kill -INT $pid; wait $pid",
+                 dir.path(), 120);
+  EXPECT_EQ(run.exit_code, 130) << run.err;
+  const std::regex said(
+      "wrc generate: interrupted; all [0-9]+ solves of this run \\(grid points "
+      "and interval midpoints\\) are saved in .*refined\\.h5\\.refine\\.");
+  EXPECT_TRUE(std::regex_search(run.err, said)) << run.err;
+  EXPECT_NE(run.err.find("--resume"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(table));
 }
 
 }  // namespace

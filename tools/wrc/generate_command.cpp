@@ -114,10 +114,16 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
         *exit_code = kExitOk;
         return;
       }
-      const std::size_t saved = summary.reused + summary.computed;
-      std::cerr << "wrc generate: interrupted; " << saved << " of " << summary.points << " points"
-                << (scene.refine ? " of this refinement pass" : "") << " are saved in "
-                << summary.journal.string() << ".\nContinue with:\n  wrc generate "
+      // A refinement run counts its solves over passes and midpoint samples; a pass's own
+      // share of them is no measure of what --resume keeps, so only the run's total is told.
+      if (scene.refine) {
+        std::cerr << "wrc generate: interrupted; all " << summary.computed
+                  << " solves of this run (grid points and interval midpoints) are saved in ";
+      } else {
+        std::cerr << "wrc generate: interrupted; " << summary.reused + summary.computed << " of "
+                  << summary.points << " points are saved in ";
+      }
+      std::cerr << summary.journal.string() << ".\nContinue with:\n  wrc generate "
                 << ShellWord(*scene_path) << " -o " << ShellWord(*output);
       if (*threads > 0) std::cerr << " --threads " << *threads;
       if (*cold_start) std::cerr << " --no-warm-start";
