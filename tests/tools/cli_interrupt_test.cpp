@@ -81,4 +81,25 @@ TEST(GenerateInterrupt, ARefinementRunTellsWhatItKeeps) {
   EXPECT_FALSE(fs::exists(table));
 }
 
+// `wrc study tables` interrupted while it generates: exit 130 and what was not written.
+TEST(StudyInterrupt, ARefinedTableCutShortEndsTheStudyWith130) {
+  const ScratchDir dir("wrc_study_sigint");
+  const fs::path scene = CaseBuilder::Shipped("mbench_small.toml")
+                             .Set("table.refine", "target", "0.01")
+                             .Write(dir / "study.toml");
+  const fs::path out = dir / "out";
+  const std::string study = Quoted(WrcBinary().string()) + " study tables " +
+                            Quoted(scene.string()) + " --targets 0.16 --samples 20 --threads 1" +
+                            " --out " + Quoted(out.string());
+  const CommandResult run = RunCommand(
+      study + " & pid=$!; while [ ! -d " + Quoted((out / "refined_0.160000.h5.refine").string()) +
+          " ]; do sleep 0.1; done; sleep 1; kill -INT $pid; wait $pid",
+      dir.path(), 120);
+  EXPECT_EQ(run.exit_code, 130) << run.err;
+  EXPECT_NE(run.err.find("wrc study tables: interrupted while generating "), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the study's report is not written"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out / "tables.md"));
+}
+
 }  // namespace

@@ -2,6 +2,8 @@
 // Subcommands of the `wrc` command-line tool.
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace wrc::cli {
 
@@ -12,6 +14,13 @@ enum ExitCode : int {
   kExitBadInput = 2,
   kExitNotConverged = 3,
   kExitInterrupted = 130,  ///< SIGINT or SIGTERM, as a shell reports a process ended by SIGINT
+};
+
+/// SIGINT or SIGTERM stopped a command before it finished; what() says how far it got and what
+/// was kept. Commands report it without "error:" and exit with kExitInterrupted.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// Option checks that say in words what a value must be: CLI11's PositiveNumber and

@@ -262,7 +262,10 @@ GenerateSummary Generate(const Scene& scene, const fs::path& table, int threads)
   options.progress = ProgressMode::kOff;
   options.handle_signals = true;
   const GenerateSummary summary = GenerateTable(scene, options);
-  if (!summary.complete) throw InputError("generating " + table.string() + " was interrupted");
+  if (!summary.complete) {
+    throw Interrupted("interrupted while generating " + table.string() +
+                      "; the study's report is not written");
+  }
   return summary;
 }
 
@@ -432,6 +435,9 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
   tables->callback([=]() {
     try {
       *exit_code = StudyTables(*scene, *tables_out, *targets, *samples, *seed, *threads);
+    } catch (const Interrupted& e) {
+      std::cerr << "wrc study tables: " << e.what() << '\n';
+      *exit_code = kExitInterrupted;
     } catch (const std::exception& e) {
       std::cerr << "wrc study tables: error: " << e.what() << '\n';
       *exit_code = kExitBadInput;

@@ -15,6 +15,7 @@
 
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
+#include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/profile.h"
 #include "wrc/core/wheelrail.h"
@@ -358,7 +359,10 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
   std::vector<std::thread> pool;
   for (int t = 0; t < n; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
-  if (gen::InterruptRequested()) throw Interrupted(solved, points.size());
+  if (gen::InterruptRequested()) {
+    throw Interrupted("interrupted after " + std::to_string(solved) + " of " +
+                      std::to_string(points.size()) + " exact solves; no report or file written");
+  }
 }
 
 Verification VerifyTable(const VerifyOptions& opt) {

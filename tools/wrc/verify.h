@@ -55,14 +55,6 @@ struct Verification {
 /// that cannot be read.
 Verification VerifyTable(const VerifyOptions& options);
 
-/// SIGINT or SIGTERM stopped the exact solves; nothing was written.
-class Interrupted : public std::runtime_error {
- public:
-  Interrupted(std::size_t solved, std::size_t total)
-      : std::runtime_error("interrupted after " + std::to_string(solved) + " of " +
-                           std::to_string(total) + " exact solves; no report or file written") {}
-};
-
 /// Exact solves of the scene at the given points (all threads); each result holds the scene's
 /// outputs in order, status as in VerifiedPoint, and for a solve that threw, its message.
 /// Throws Interrupted when SIGINT or SIGTERM arrives: the solves in flight finish, no new
