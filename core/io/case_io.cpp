@@ -778,6 +778,12 @@ ProfileOptions ProfileOptionsOf(const ProfileSource& source) {
   return options;
 }
 
+std::shared_ptr<const ProfileSpline> SplineOf(const ProfileSource& source, ProfileKind kind) {
+  if (source.spline) return source.spline;
+  return std::make_shared<const ProfileSpline>(
+      ReadProfile(source.path.string(), kind, ProfileOptionsOf(source)));
+}
+
 Case ParseCase(std::string_view toml_text, const std::filesystem::path& base_dir,
                std::string_view display_name) {
   const io::SourceFile file{std::string(display_name)};

@@ -255,22 +255,16 @@ struct BoxOnGrid {
     }
     return out;
   }
-  // Back onto the potential contact area, `outside` where the box does not reach.
-  std::vector<double> Expand(const std::vector<double>& v,
-                             const std::vector<double>* outside) const {
-    std::vector<double> out = outside ? *outside : std::vector<double>(grid.size(), 0.0);
+  // Back onto the potential contact area, `out` (the area's size) keeping its values where the
+  // box does not reach.
+  template <class T>
+  std::vector<T> Expand(const std::vector<T>& v, std::vector<T> out) const {
     for (int j = 0; j < box.ny; ++j) {
       for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
     }
     return out;
   }
-  std::vector<ElementState> ExpandStates(const std::vector<ElementState>& v) const {
-    std::vector<ElementState> out(grid.size(), ElementState::kExterior);
-    for (int j = 0; j < box.ny; ++j) {
-      for (int i = 0; i < box.nx; ++i) out[grid.index(sb.i0 + i, sb.j0 + j)] = v[box.index(i, j)];
-    }
-    return out;
-  }
+  std::vector<double> Zeros() const { return std::vector<double>(grid.size(), 0.0); }
 };
 
 // The normal problem on the solve box, warm-started from the patch's previous solution; fills
@@ -301,7 +295,7 @@ NormalSummary SolveNormalOnBox(const PatchContext& ctx, const BoxOnGrid& on, boo
   }
   result.normal_iterations = normal.iterations;
   result.status = normal.status;
-  result.pn = on.Expand(ns.pressure, nullptr);
+  result.pn = on.Expand(ns.pressure, on.Zeros());
   result.pmax = ns.pmax;
   result.n_contact = ns.n_contact;
   return normal;
@@ -369,12 +363,13 @@ TangentialSummary SolveTangentialOnBox(const PatchContext& ctx, const BoxOnGrid&
   }
   result.tangential_iterations = summary.iterations;
   if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
-  result.px = on.Expand(ts.px, nullptr);
-  result.ps = on.Expand(ts.py, nullptr);
+  result.px = on.Expand(ts.px, on.Zeros());
+  result.ps = on.Expand(ts.py, on.Zeros());
   // Outside the box nothing is in contact; the slip reported there is the rigid slip.
-  result.sx = on.Expand(ts.sx, &wx);
-  result.ss = on.Expand(ts.sy, &wy);
-  result.state = on.ExpandStates(ts.state);
+  result.sx = on.Expand(ts.sx, wx);
+  result.ss = on.Expand(ts.sy, wy);
+  result.state =
+      on.Expand(ts.state, std::vector<ElementState>(on.grid.size(), ElementState::kExterior));
   result.n_slip = ts.n_slip;
   result.n_adhesion = ts.n_adhesion;
   return summary;

@@ -15,12 +15,6 @@ namespace {
 // A reach far beyond any profile's height locates the wheel above every rail point.
 constexpr double kEverywhere = 1e3;
 
-std::shared_ptr<const ProfileSpline> Spline(const ProfileSource& source, ProfileKind kind) {
-  if (source.spline) return source.spline;
-  return std::make_shared<const ProfileSpline>(
-      ReadProfile(source.path.string(), kind, ProfileOptionsOf(source)));
-}
-
 wr::WheelsetKinematics Kinematics(const WheelsetPlacement& pose) {
   wr::WheelsetKinematics kin;
   kin.y = pose.y;
@@ -40,8 +34,8 @@ std::vector<double> Steps(double length, double step) {
 }  // namespace
 
 PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, double step) {
-  const wr::PlacedRail rail(Spline(c.rail, ProfileKind::kRail), c.track);
-  const wr::PlacedWheel wheel(Spline(c.wheel, ProfileKind::kWheel), c.wheelset, Kinematics(pose));
+  const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
+  const wr::PlacedWheel wheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset, Kinematics(pose));
   PlacedProfiles placed;
   for (const Eigen::Vector2d& p : rail.PositionsAt(Steps(rail.length(), step))) {
     placed.rail_y.push_back(p(0));
@@ -63,10 +57,10 @@ PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, doubl
 }
 
 double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step) {
-  const wr::PlacedRail rail(Spline(c.rail, ProfileKind::kRail), c.track);
+  const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
   WheelsetPlacement at_zero = pose;
   at_zero.z = 0.0;
-  const wr::PlacedWheel wheel(Spline(c.wheel, ProfileKind::kWheel), c.wheelset,
+  const wr::PlacedWheel wheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset,
                               Kinematics(at_zero));
   double first = std::numeric_limits<double>::infinity();
   for (const wr::LocusSample& s : wr::SearchContact(rail, wheel, step, 0.0).samples) {

@@ -571,18 +571,9 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   pb.c = &c;
   pb.options = &options;
   pb.material = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
-  const ProfileOptions rail_options = ProfileOptionsOf(c.rail);
-  const ProfileOptions wheel_options = ProfileOptionsOf(c.wheel);
   // Profiles already read by LoadCase / LoadScene are shared; a case built in code is read here.
-  pb.rail = std::make_unique<PlacedRail>(
-      c.rail.spline ? c.rail.spline
-                    : std::make_shared<const ProfileSpline>(
-                          ReadProfile(c.rail.path.string(), ProfileKind::kRail, rail_options)),
-      c.track);
-  pb.wheel_spline = c.wheel.spline
-                        ? c.wheel.spline
-                        : std::make_shared<const ProfileSpline>(ReadProfile(
-                              c.wheel.path.string(), ProfileKind::kWheel, wheel_options));
+  pb.rail = std::make_unique<PlacedRail>(SplineOf(c.rail, ProfileKind::kRail), c.track);
+  pb.wheel_spline = SplineOf(c.wheel, ProfileKind::kWheel);
 
   const std::string flange_back_hint = CheckFlangeBack(c, *pb.wheel_spline);
 

@@ -26,23 +26,21 @@ class Interrupted : public std::runtime_error {
 /// Option checks that say in words what a value must be: CLI11's PositiveNumber and
 /// NonNegativeNumber state their range as "0.000000 to 1797693...(309 digits).000000".
 /// The message reads "--samples: must be greater than 0, is 0".
-inline CLI::Validator GreaterThanZero() {
+template <class Accept>
+CLI::Validator NumberCheck(Accept accept, const std::string& must, const std::string& name) {
   return CLI::Validator(
-      [](std::string& text) {
+      [accept, must](std::string& text) {
         double value = 0.0;
         const bool number = CLI::detail::lexical_cast(text, value);
-        return number && value > 0.0 ? std::string() : "must be greater than 0, is " + text;
+        return number && accept(value) ? std::string() : "must be " + must + ", is " + text;
       },
-      "> 0");
+      name);
+}
+inline CLI::Validator GreaterThanZero() {
+  return NumberCheck([](double v) { return v > 0.0; }, "greater than 0", "> 0");
 }
 inline CLI::Validator ZeroOrMore() {
-  return CLI::Validator(
-      [](std::string& text) {
-        double value = 0.0;
-        const bool number = CLI::detail::lexical_cast(text, value);
-        return number && value >= 0.0 ? std::string() : "must be 0 or more, is " + text;
-      },
-      ">= 0");
+  return NumberCheck([](double v) { return v >= 0.0; }, "0 or more", ">= 0");
 }
 
 /// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.

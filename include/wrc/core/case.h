@@ -80,6 +80,10 @@ struct ProfileSource {
 /// The reading options that a `[rail]` or `[wheel]` section asks for.
 ProfileOptions ProfileOptionsOf(const ProfileSource& source);
 
+/// The source's spline: the one LoadCase / LoadScene read, or else the file read now with the
+/// section's options. Throws InputError for a profile that cannot be read.
+std::shared_ptr<const ProfileSpline> SplineOf(const ProfileSource& source, ProfileKind kind);
+
 /// `[track]`: placement of the rail.
 struct Track {
   /// mm below the track plane where the gauge is measured; <= 0 selects the absolute
