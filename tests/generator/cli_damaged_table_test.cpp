@@ -136,6 +136,27 @@ TEST(CliDamagedTable, FloatOfAbsurdSize) {
   ExpectRefused(table, "not a standard");
 }
 
+// Damaged tables in HDF5's earliest format (no metadata checksums) found by mutating one: HDF5
+// 1.10 crashes reading them (a B-tree header, an attribute lookup by name, a compact dataset
+// read past its buffer). The commands read such files in a child process first and report the
+// crash as damage; plot reads the same way.
+TEST(CliDamagedTable, EarliestFormatFilesThatCrashHdf5AreErrors) {
+  const fs::path dir = fs::path(WRC_SOURCE_DIR) / "tests" / "runtime" / "damaged";
+  for (const char* name : {"crashes_hdf5_btree_header.h5", "crashes_hdf5_attribute_exists.h5",
+                           "crashes_hdf5_compact_read.h5"}) {
+    SCOPED_TRACE(name);
+    ScratchDir scratch("damaged_crashes_hdf5");
+    const fs::path table = scratch / name;
+    fs::copy_file(dir / name, table);
+    ExpectRefused(table, name + std::string(": damaged table: reading its HDF5 metadata crashed"));
+    const CommandResult plot = RunCommand(
+        Quoted(WrcBinary()) + " plot table " + Quoted(table.string()) + " --output fy --x y",
+        scratch.path());
+    EXPECT_EQ(plot.exit_code, 2) << plot.err;
+    EXPECT_NE(plot.err.find("crashed the HDF5 library"), std::string::npos) << plot.err;
+  }
+}
+
 // ---- the table file that `wrc generate` writes ---------------------------------------------
 
 std::string SmallScene() {

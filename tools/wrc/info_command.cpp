@@ -10,6 +10,7 @@
 
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
+#include "tools/wrc/table_probe.h"
 #include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
 
@@ -197,6 +198,7 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
     try {
       // The runtime's validation first (types, shapes, axes, values, format version): what
       // info reads afterwards has passed every check a simulator's open makes.
+      ProbeUncheckedTable(*path);
       const Table validated(*path);
       const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {
