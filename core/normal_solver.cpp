@@ -577,7 +577,6 @@ struct ActiveSetProblem {
   const LocalInverseStencil* stencil;  ///< nullptr: not preconditioned
   std::size_t n;
   double area;
-  bool force_control;
 };
 
 // What the iteration carries from one step to the next.
@@ -589,67 +588,202 @@ struct ActiveSetState {
   int stable_steps = 0, deflations = 0, since_refresh = 0;
 };
 
-// Initial guess: the warm start, or a pressure that is uniform (force control) or, under
-// approach control, shaped like Hertz's p ∝ sqrt(δ − h) on the interpenetration and scaled to
-// the least elastic energy along that shape once its displacement is known (the first product,
-// which the first iteration needs anyway: ScaleHertzStart). Measured on heavy haul: 27/29/31
-// iterations become 21/26/28; pressures proportional to the interpenetration (with the
-// element's own stiffness, the earlier start, or scaled the same way) take 26–31. Returns
-// whether the Hertz shape was used.
-WRC_GRID_PASS bool StartPressure(const ActiveSetProblem& pb, const NormalOptions& options,
-                                 NormalSolution& sol) {
-  const std::size_t n = pb.n;
-  const bool warm =
-      options.warm_start && sol.pressure.size() == n &&
-      std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
-  if (!warm) {
-    sol.pressure.assign(n, 0.0);
-    if (pb.force_control) {
-      std::fill(sol.pressure.begin(), sol.pressure.end(), pb.load.value / (pb.area * n));
-    } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        sol.pressure[i] = std::sqrt(std::max(0.0, pb.load.value - pb.h[i]));
-      }
+struct GapSums {
+  double sum = 0.0, sum_of_squares = 0.0;
+  int n_active = 0;
+};
+
+struct StepSums {
+  double sum = 0.0, change = 0.0;  ///< Σ p and Σ |Δp| after the step
+  bool overlap = false;            ///< an element outside the contact was re-activated
+};
+
+// The two load controls: everything the active-set iteration does differently when the approach
+// δ is prescribed and when the total force F is. The steps below are templates over them.
+//
+// Approach control: the gap is u + h − δ, only elements with h < δ can carry pressure (A·p >= 0
+// keeps every other gap open), and the pressures are free.
+struct ApproachControl {
+  // Shaped like Hertz's p ∝ sqrt(δ − h) on the interpenetration; scaled to the least elastic
+  // energy along that shape once its displacement is known (RefreshDisplacement).
+  static constexpr bool kHertzStart = true;
+  // Deflation solves A·p = δ − h on a fixed contact set: only with δ known.
+  static constexpr bool kDeflates = true;
+
+  static bool NothingToSolve(const NormalLoad& load, double hmin) {
+    return hmin - load.value >= 0.0;
+  }
+  static double ApproachWithoutContact(const NormalLoad& load, double) { return load.value; }
+
+  WRC_GRID_PASS static void ColdStart(const ActiveSetProblem& pb, NormalSolution& sol) {
+    for (std::size_t i = 0; i < pb.n; ++i) {
+      sol.pressure[i] = std::sqrt(std::max(0.0, pb.load.value - pb.h[i]));
     }
   }
-  if (pb.force_control) {
+  WRC_GRID_PASS static void ImposeForce(const ActiveSetProblem&, NormalSolution&) {}
+
+  // One stretch per row around the interpenetrating elements (on the combined heavy-haul
+  // patches the passes then skip two thirds of the box or more).
+  WRC_GRID_PASS static void FindSegments(const ActiveSetProblem& pb, Scratch& ws,
+                                         NormalSolution& sol) {
+    const std::size_t nx = static_cast<std::size_t>(pb.op.grid().nx);
+    for (std::size_t row = 0; row < pb.n; row += nx) {
+      std::size_t lo = row + nx, hi = row;
+      for (std::size_t i = row; i < row + nx; ++i) {
+        if (pb.h[i] < pb.load.value) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
+      }
+      if (hi > lo) ws.segments.emplace_back(lo, hi);
+    }
+    // A warm start may carry pressure where the gap is now open for good.
+    std::size_t open_from = 0;
+    for (const auto& [begin, end] : ws.segments) {
+      std::fill(sol.pressure.begin() + open_from, sol.pressure.begin() + begin, 0.0);
+      open_from = end;
+    }
+    std::fill(sol.pressure.begin() + open_from, sol.pressure.end(), 0.0);
+  }
+
+  static double GapShift(const ActiveSetProblem& pb) { return pb.load.value; }
+  WRC_GRID_PASS static double CentreGap(const ActiveSetProblem&, const GapSums& sums,
+                                        ActiveSetState&, Scratch&, const NormalSolution&) {
+    return sums.sum_of_squares;
+  }
+  WRC_GRID_PASS static void CentrePreconditioned(const ActiveSetProblem&, int, Scratch&,
+                                                 const NormalSolution&) {}
+  static double MeanResponse(double, int) { return 0.0; }
+  WRC_GRID_PASS static void KeepPressures(Scratch&, const NormalSolution&) {}
+  WRC_GRID_PASS static double ReimposeForce(const ActiveSetProblem&, StepSums&, const Scratch&,
+                                            NormalSolution&) {
+    return 1.0;
+  }
+  static double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState&,
+                              const std::vector<double>**, Scratch&, const NormalSolution&) {
+    return pb.load.value;
+  }
+};
+
+// Force control: the approach is unknown. It is estimated as the mean gap over the contact and
+// subtracted from the residual and the step (which keeps the step within Σp = F/dA); every
+// element may carry pressure, and the total force is re-imposed after each step.
+struct ForceControl {
+  static constexpr bool kHertzStart = false;
+  static constexpr bool kDeflates = false;
+
+  static bool NothingToSolve(const NormalLoad& load, double) { return load.value == 0.0; }
+  static double ApproachWithoutContact(const NormalLoad&, double hmin) { return hmin; }
+
+  WRC_GRID_PASS static void ColdStart(const ActiveSetProblem& pb, NormalSolution& sol) {
+    std::fill(sol.pressure.begin(), sol.pressure.end(), pb.load.value / (pb.area * pb.n));
+  }
+  WRC_GRID_PASS static void ImposeForce(const ActiveSetProblem& pb, NormalSolution& sol) {
     double sum = 0.0;
     for (double p : sol.pressure) sum += p;
     const double scale = pb.load.value / (pb.area * sum);
     for (double& p : sol.pressure) p *= scale;
   }
-  return !warm && !pb.force_control;
-}
 
-// The elements that can carry pressure: under approach control those interpenetrating at the
-// approach (h < δ), as A·p >= 0 keeps every other gap open; under force control, whose approach
-// is unknown, all. Kept as one stretch per row, so that the passes of an iteration skip the
-// rest of the box (on the combined heavy-haul patches, two thirds of it or more).
-WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, Scratch& ws, NormalSolution& sol) {
-  const std::size_t n = pb.n;
-  ws.segments.clear();
-  const std::size_t nx = static_cast<std::size_t>(pb.op.grid().nx);
-  if (pb.force_control) {
-    for (std::size_t row = 0; row < n; row += nx) ws.segments.emplace_back(row, row + nx);
-    return;
+  WRC_GRID_PASS static void FindSegments(const ActiveSetProblem& pb, Scratch& ws, NormalSolution&) {
+    const std::size_t nx = static_cast<std::size_t>(pb.op.grid().nx);
+    for (std::size_t row = 0; row < pb.n; row += nx) ws.segments.emplace_back(row, row + nx);
   }
-  for (std::size_t row = 0; row < n; row += nx) {
-    std::size_t lo = row + nx, hi = row;
-    for (std::size_t i = row; i < row + nx; ++i) {
-      if (pb.h[i] < pb.load.value) {
-        lo = std::min(lo, i);
-        hi = i + 1;
+
+  static double GapShift(const ActiveSetProblem&) { return 0.0; }
+
+  // The mean gap over the contact is the approach estimate: subtracted from gap and residual,
+  // in a pass of its own, since Σg² − n·mean² would cancel (the gaps sit near the approach and
+  // differ from it by far less). Returns |r|².
+  WRC_GRID_PASS static double CentreGap(const ActiveSetProblem& pb, const GapSums& sums,
+                                        ActiveSetState& state, Scratch& ws,
+                                        const NormalSolution& sol) {
+    state.mean_gap = sums.sum / sums.n_active;
+    double norm = 0.0;
+    for (std::size_t i = 0; i < pb.n; ++i) {  // the segments: the whole grid
+      ws.gap[i] -= state.mean_gap;
+      const bool active = sol.pressure[i] > 0.0;
+      ws.residual[i] = active ? ws.gap[i] : 0.0;
+      if (active) norm += ws.gap[i] * ws.gap[i];
+    }
+    return norm;
+  }
+  // z centred like r.
+  WRC_GRID_PASS static void CentrePreconditioned(const ActiveSetProblem& pb, int n_active,
+                                                 Scratch& ws, const NormalSolution& sol) {
+    double sum_z = 0.0;
+    for (std::size_t i = 0; i < pb.n; ++i) sum_z += ws.preconditioned[i];
+    const double mean_z = sum_z / n_active;
+    for (std::size_t i = 0; i < pb.n; ++i) {
+      if (sol.pressure[i] > 0.0) ws.preconditioned[i] -= mean_z;
+    }
+  }
+  // A·d centred like r in the step length's denominator.
+  static double MeanResponse(double sum_response, int n_active) { return sum_response / n_active; }
+  // The pressures before the step, against which ReimposeForce counts the change.
+  WRC_GRID_PASS static void KeepPressures(Scratch& ws, const NormalSolution& sol) {
+    ws.previous = sol.pressure;
+  }
+  // Σp = F/dA again after the projection; returns the scale applied.
+  WRC_GRID_PASS static double ReimposeForce(const ActiveSetProblem& pb, StepSums& step,
+                                            const Scratch& ws, NormalSolution& sol) {
+    if (!(step.sum > 0.0)) return 1.0;
+    const double scale = pb.load.value / (pb.area * step.sum);
+    for (double& p : sol.pressure) p *= scale;
+    step.sum = pb.load.value / pb.area;
+    step.change = 0.0;
+    for (std::size_t i = 0; i < pb.n; ++i) {
+      step.change += std::fabs(sol.pressure[i] - ws.previous[i]);
+    }
+    return scale;
+  }
+  // The mean gap over the final contact area. `displacement` is A·p, or nullptr (then made
+  // into ws.gap).
+  static double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState& state,
+                              const std::vector<double>** displacement, Scratch& ws,
+                              const NormalSolution& sol) {
+    if (!*displacement) {
+      pb.op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
+      *displacement = &ws.gap;
+    }
+    const std::vector<double>& u = **displacement;
+    double sum_gap = 0.0;
+    int n_active = 0;
+    for (std::size_t i = 0; i < pb.n; ++i) {
+      if (sol.pressure[i] > 0.0) {
+        sum_gap += u[i] + pb.h[i];
+        ++n_active;
       }
     }
-    if (hi > lo) ws.segments.emplace_back(lo, hi);
+    return n_active > 0 ? sum_gap / n_active : state.mean_gap;
   }
-  // A warm start may carry pressure where the gap is now open for good.
-  std::size_t open_from = 0;
-  for (const auto& [begin, end] : ws.segments) {
-    std::fill(sol.pressure.begin() + open_from, sol.pressure.begin() + begin, 0.0);
-    open_from = end;
+};
+
+// Initial guess: the warm start, or the control's cold start; under force control scaled to F.
+// The Hertz start of approach control, measured on heavy haul: 27/29/31 iterations become
+// 21/26/28; pressures proportional to the interpenetration (with the element's own stiffness,
+// the earlier start, or scaled the same way) take 26–31. Returns whether the Hertz shape was
+// used (its scale comes with the first product).
+template <class Control>
+WRC_GRID_PASS bool StartPressure(const ActiveSetProblem& pb, const NormalOptions& options,
+                                 NormalSolution& sol) {
+  const bool warm =
+      options.warm_start && sol.pressure.size() == pb.n &&
+      std::any_of(sol.pressure.begin(), sol.pressure.end(), [](double p) { return p > 0.0; });
+  if (!warm) {
+    sol.pressure.assign(pb.n, 0.0);
+    Control::ColdStart(pb, sol);
   }
-  std::fill(sol.pressure.begin() + open_from, sol.pressure.end(), 0.0);
+  Control::ImposeForce(pb, sol);
+  return !warm && Control::kHertzStart;
+}
+
+// The elements that can carry pressure, kept as one stretch per row so that the passes of an
+// iteration skip the rest of the box.
+template <class Control>
+WRC_GRID_PASS void FindSegments(const ActiveSetProblem& pb, Scratch& ws, NormalSolution& sol) {
+  ws.segments.clear();
+  Control::FindSegments(pb, ws, sol);
 }
 
 // u = A·p afresh when the carried one is not valid or due for a refresh; after the Hertz start
@@ -675,19 +809,14 @@ WRC_GRID_PASS void RefreshDisplacement(const ActiveSetProblem& pb, bool scale_he
   }
 }
 
-struct GapSums {
-  double sum = 0.0, sum_of_squares = 0.0;
-  int n_active = 0;
-};
-
 // The gap g = u + h − δ (δ = 0 under force control) on the segments, the residual (g on the
 // contact, 0 elsewhere) and the sums of g and g² over the contact.
-WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, Scratch& ws, const NormalSolution& sol) {
-  const double approach_shift = pb.force_control ? 0.0 : pb.load.value;
+WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, double shift, Scratch& ws,
+                              const NormalSolution& sol) {
   GapSums sums;
   for (const auto& [begin, end] : ws.segments) {
     for (std::size_t i = begin; i < end; ++i) {
-      const double g = ws.displacement[i] + pb.h[i] - approach_shift;
+      const double g = ws.displacement[i] + pb.h[i] - shift;
       ws.gap[i] = g;
       const bool active = sol.pressure[i] > 0.0;
       ws.residual[i] = active ? g : 0.0;
@@ -701,38 +830,15 @@ WRC_GRID_PASS GapSums GapPass(const ActiveSetProblem& pb, Scratch& ws, const Nor
   return sums;
 }
 
-// Under force control the mean gap over the contact is the (unknown) approach: subtracted from
-// gap and residual, in a pass of its own, since Σg² − n·mean² would cancel (the gaps sit near
-// the approach and differ from it by far less). Returns |r|².
-WRC_GRID_PASS double CentreGap(const ActiveSetProblem& pb, const GapSums& sums,
-                               ActiveSetState& state, Scratch& ws, const NormalSolution& sol) {
-  if (!pb.force_control) return sums.sum_of_squares;
-  state.mean_gap = sums.sum / sums.n_active;
-  double norm = 0.0;
-  for (std::size_t i = 0; i < pb.n; ++i) {  // the segments: the whole grid
-    ws.gap[i] -= state.mean_gap;
-    const bool active = sol.pressure[i] > 0.0;
-    ws.residual[i] = active ? ws.gap[i] : 0.0;
-    if (active) norm += ws.gap[i] * ws.gap[i];
-  }
-  return norm;
-}
-
 // z = M·r (or r), centred like r under force control; returns r·z for β.
+template <class Control>
 WRC_GRID_PASS double Precondition(const ActiveSetProblem& pb, int n_active, double residual_norm,
                                   Scratch& ws, const NormalSolution& sol, const double** z) {
   *z = ws.residual.data();
   if (!pb.stencil) return residual_norm;
   ApplyLocalInverse(*pb.stencil, pb.op.grid(), ws.segments, ws.residual.data(), sol.pressure.data(),
                     ws.column_sums.data(), ws.preconditioned.data());
-  if (pb.force_control) {  // the segments: the whole grid
-    double sum_z = 0.0;
-    for (std::size_t i = 0; i < pb.n; ++i) sum_z += ws.preconditioned[i];
-    const double mean_z = sum_z / n_active;
-    for (std::size_t i = 0; i < pb.n; ++i) {
-      if (sol.pressure[i] > 0.0) ws.preconditioned[i] -= mean_z;
-    }
-  }
+  Control::CentrePreconditioned(pb, n_active, ws, sol);
   double rz = 0.0;
   for (const auto& [begin, end] : ws.segments) {
     for (std::size_t i = begin; i < end; ++i) rz += ws.residual[i] * ws.preconditioned[i];
@@ -753,8 +859,8 @@ WRC_GRID_PASS void UpdateDirection(const double* z, double beta, Scratch& ws,
 
 // τ = r·d / (A·d)·d over the contact, with r and A·d centred under force control:
 // den = Σ (w − mean w)·d = Σ w·d − mean w·Σ d.
-WRC_GRID_PASS double StepLength(const ActiveSetProblem& pb, int n_active, const Scratch& ws,
-                                const NormalSolution& sol) {
+template <class Control>
+WRC_GRID_PASS double StepLength(int n_active, const Scratch& ws, const NormalSolution& sol) {
   double num = 0.0, rd = 0.0, sum_response = 0.0, sum_direction = 0.0;
   for (const auto& [begin, end] : ws.segments) {
     for (std::size_t i = begin; i < end; ++i) {
@@ -766,15 +872,9 @@ WRC_GRID_PASS double StepLength(const ActiveSetProblem& pb, int n_active, const 
       }
     }
   }
-  const double mean_response = pb.force_control ? sum_response / n_active : 0.0;
-  const double den = rd - mean_response * sum_direction;
+  const double den = rd - Control::MeanResponse(sum_response, n_active) * sum_direction;
   return den > 0.0 ? num / den : 0.0;
 }
-
-struct StepSums {
-  double sum = 0.0, change = 0.0;  ///< Σ p and Σ |Δp| after the step
-  bool overlap = false;            ///< an element outside the contact was re-activated
-};
 
 // p ← max(0, p − τ·d) on the contact, and p = max(0, −τ·g) where the gap is negative outside
 // it; the elements clipped or re-activated go to ws.corrected with the pressure they got
@@ -813,19 +913,6 @@ WRC_GRID_PASS StepSums ProjectedStep(const ActiveSetProblem& pb, double tau, Scr
   return step;
 }
 
-// Under force control the total force is re-imposed after each step (the change then counts
-// against the pressures before the step, ws.previous). Returns the scale applied.
-WRC_GRID_PASS double ReimposeForce(const ActiveSetProblem& pb, StepSums& step, const Scratch& ws,
-                                   NormalSolution& sol) {
-  if (!pb.force_control || !(step.sum > 0.0)) return 1.0;
-  const double scale = pb.load.value / (pb.area * step.sum);
-  for (double& p : sol.pressure) p *= scale;
-  step.sum = pb.load.value / pb.area;
-  step.change = 0.0;
-  for (std::size_t i = 0; i < pb.n; ++i) step.change += std::fabs(sol.pressure[i] - ws.previous[i]);
-  return scale;
-}
-
 // u += A·c for the corrections of the step, then u ← s·u; or u invalid when the corrections
 // are too many to add column by column (the next iteration makes a product).
 WRC_GRID_PASS void CarryDisplacement(const ActiveSetProblem& pb, double scale,
@@ -855,26 +942,27 @@ enum class StepOutcome { kContinue, kRestarted, kConverged };
 
 // One iteration: gap, preconditioned residual, conjugate direction, its response, the
 // projected step and the carried displacement.
+template <class Control>
 WRC_GRID_PASS StepOutcome ActiveSetStep(const ActiveSetProblem& pb, const NormalOptions& options,
                                         bool scale_hertz_start, ActiveSetState& state, Scratch& ws,
                                         NormalSolution& sol, NormalSummary& summary) {
   RefreshDisplacement(pb, scale_hertz_start, state, ws, sol);
-  const GapSums gaps = GapPass(pb, ws, sol);
+  const GapSums gaps = GapPass(pb, Control::GapShift(pb), ws, sol);
   if (gaps.n_active == 0) {
     RestartFromInterpenetration(state, ws, sol);
     return StepOutcome::kRestarted;
   }
-  const double residual_norm = CentreGap(pb, gaps, state, ws, sol);
+  const double residual_norm = Control::CentreGap(pb, gaps, state, ws, sol);
   const double* z = nullptr;
-  const double rz = Precondition(pb, gaps.n_active, residual_norm, ws, sol, &z);
+  const double rz = Precondition<Control>(pb, gaps.n_active, residual_norm, ws, sol, &z);
   UpdateDirection(z, state.conjugate ? rz / state.rz_old : 0.0, ws, sol);
   state.rz_old = rz;
   pb.op.Apply(InfluenceComponent::kNN, ws.direction.data(), ws.response.data(), ws.convolution);
-  const double tau = StepLength(pb, gaps.n_active, ws, sol);
-  if (pb.force_control) ws.previous = sol.pressure;
+  const double tau = StepLength<Control>(gaps.n_active, ws, sol);
+  Control::KeepPressures(ws, sol);
   StepSums step = ProjectedStep(pb, tau, ws, sol);
   state.conjugate = !step.overlap;
-  const double scale = ReimposeForce(pb, step, ws, sol);
+  const double scale = Control::ReimposeForce(pb, step, ws, sol);
   CarryDisplacement(pb, scale, state, ws);
   summary.residual = step.sum > 0.0 ? step.change / step.sum : 0.0;
   return summary.residual < options.tolerance ? StepOutcome::kConverged : StepOutcome::kContinue;
@@ -884,32 +972,11 @@ WRC_GRID_PASS StepOutcome ActiveSetStep(const ActiveSetProblem& pb, const Normal
 // again), and the rest is a linear solve on it. Only with three decades or more still to go
 // (closer to the end the setup costs more than it saves: warm-started Manchester solves lost
 // 1 % at two decades), and at most twice, should the set move after all.
-bool DeflationDue(const ActiveSetProblem& pb, const NormalOptions& options,
-                  const ActiveSetState& state, const NormalSummary& summary) {
-  return options.deflate && !pb.force_control && state.stable_steps >= 2 && state.deflations < 2 &&
+template <class Control>
+bool DeflationDue(const NormalOptions& options, const ActiveSetState& state,
+                  const NormalSummary& summary) {
+  return options.deflate && Control::kDeflates && state.stable_steps >= 2 && state.deflations < 2 &&
          state.displacement_valid && summary.residual > 1000.0 * options.tolerance;
-}
-
-// The approach: prescribed, or under force control the mean gap over the final contact area.
-// `displacement` is A·p, or nullptr (then made into ws.gap).
-double FinalApproach(const ActiveSetProblem& pb, const ActiveSetState& state,
-                     const std::vector<double>** displacement, Scratch& ws,
-                     const NormalSolution& sol) {
-  if (!pb.force_control) return pb.load.value;
-  if (!*displacement) {
-    pb.op.Apply(InfluenceComponent::kNN, sol.pressure.data(), ws.gap.data(), ws.convolution);
-    *displacement = &ws.gap;
-  }
-  const std::vector<double>& u = **displacement;
-  double sum_gap = 0.0;
-  int n_active = 0;
-  for (std::size_t i = 0; i < pb.n; ++i) {
-    if (sol.pressure[i] > 0.0) {
-      sum_gap += u[i] + pb.h[i];
-      ++n_active;
-    }
-  }
-  return n_active > 0 ? sum_gap / n_active : state.mean_gap;
 }
 
 void SizeWorkspace(const FftInfluenceOperator& op, std::size_t n, bool preconditioned,
@@ -926,12 +993,91 @@ void SizeWorkspace(const FftInfluenceOperator& op, std::size_t n, bool precondit
   }
 }
 
+// The active-set iteration under one load control, from the start to the final approach, with
+// the hand-over to SolveOnContactSet once the contact set settles.
+template <class Control>
+WRC_GRID_PASS void SolveActiveSet(const ActiveSetProblem& pb, const NormalOptions& options,
+                                  Scratch& ws, NormalSolution& sol, NormalSummary& summary) {
+  SizeWorkspace(pb.op, pb.n, pb.stencil != nullptr, ws);
+  const bool hertz_start = StartPressure<Control>(pb, options, sol);
+  FindSegments<Control>(pb, ws, sol);
+  ws.residual.assign(pb.n, 0.0);  // zero off the segments, where the stencil reads it too
+  ActiveSetState state;
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    const StepOutcome outcome =
+        ActiveSetStep<Control>(pb, options, it == 1 && hertz_start, state, ws, sol, summary);
+    if (outcome == StepOutcome::kRestarted) continue;
+    summary.iterations = it;
+    if (outcome == StepOutcome::kConverged) {
+      summary.status = SolverStatus::kConverged;
+      break;
+    }
+    state.stable_steps = ws.corrected.empty() ? state.stable_steps + 1 : 0;
+    if (!DeflationDue<Control>(options, state, summary)) continue;
+    ++state.deflations;
+    const DeflationOutcome deflation =
+        SolveOnContactSet(pb.op, pb.columns, pb.h, pb.load.value, options,
+                          options.max_iterations - it, pb.stencil, ws, sol);
+    it += deflation.iterations;
+    summary.iterations = it;
+    if (deflation.converged) {
+      summary.residual = deflation.residual;
+      summary.status = SolverStatus::kConverged;
+      break;
+    }
+    state.displacement_valid = false;  // the pressures were clipped
+    state.conjugate = false;
+    state.stable_steps = 0;
+  }
+  // The carried displacement is A·p of the final pressures when the last step kept it (it
+  // differs from a fresh product by the round-off of at most kRefreshIterations updates,
+  // ~1e-14 relative), and saves the product of the deformed distance.
+  const std::vector<double>* displacement = state.displacement_valid ? &ws.displacement : nullptr;
+  const double approach = Control::FinalApproach(pb, state, &displacement, ws, sol);
+  Finish(pb.op, pb.h, approach, displacement, ws, sol);
+}
+
+// Zero force, or no interpenetration at the given approach: zero pressure.
+template <class Control>
+bool SolvedWithoutContact(const FftInfluenceOperator& op, const std::vector<double>& h,
+                          const NormalLoad& load, Scratch& ws, NormalSolution& sol,
+                          NormalSummary& summary) {
+  const double hmin = *std::min_element(h.begin(), h.end());
+  if (!Control::NothingToSolve(load, hmin)) return false;
+  SizeWorkspace(op, h.size(), false, ws);
+  sol.pressure.assign(h.size(), 0.0);
+  Finish(op, h, Control::ApproachWithoutContact(load, hmin), nullptr, ws, sol);
+  summary.status = SolverStatus::kNoContact;
+  return true;
+}
+
+template <class Control>
+WRC_GRID_PASS NormalSummary SolveUnder(const FftInfluenceOperator& op, const std::vector<double>& h,
+                                       const NormalLoad& load, const NormalOptions& options,
+                                       Scratch& ws, NormalSolution& sol) {
+  NormalSummary summary;
+  if (SolvedWithoutContact<Control>(op, h, load, ws, sol, summary)) return summary;
+  const std::optional<LocalInverseStencil> local_inverse =
+      options.precondition ? op.LocalInverse(InfluenceComponent::kNN) : std::nullopt;
+  const InfluenceCoefficients columns(op.grid(), op.material(), InfluenceComponent::kNN);
+  const ActiveSetProblem pb{op,
+                            h,
+                            load,
+                            columns,
+                            local_inverse ? &*local_inverse : nullptr,
+                            h.size(),
+                            op.grid().element_area()};
+  SolveActiveSet<Control>(pb, options, ws, sol, summary);
+  return summary;
+}
+
 }  // namespace
 
 // Polonsky & Keer (1999), Wear 231: CG restricted to the elements in contact, with the
 // projection p >= 0 after each step and re-activation of elements where the gap is negative.
 // Under force control the mean gap over the contact is the (unknown) approach, so it is
-// subtracted from the residual and the step, and the total force is re-imposed every step.
+// subtracted from the residual and the step, and the total force is re-imposed every step
+// (ForceControl; ApproachControl is the other load control).
 //
 // Preconditioned with the 3 × 3 centre M of the inverse influence matrix (as NormCG's FFT
 // preconditioner, Vollebregt 2014, but local). The full inverse has a symbol that vanishes for
@@ -948,68 +1094,11 @@ WRC_CLONE_FOR_AVX2
 NormalSummary SolveNormal(const FftInfluenceOperator& op, const std::vector<double>& h,
                           const NormalLoad& load, const NormalOptions& options,
                           NormalWorkspace& workspace, NormalSolution& sol) {
-  Scratch& ws = workspace.scratch();
   Validate(op, h, load);
-  const std::size_t n = h.size();
-  const bool force_control = load.kind == NormalLoad::Kind::kForce;
-  NormalSummary summary;
-  const double hmin = *std::min_element(h.begin(), h.end());
-  if (force_control ? load.value == 0.0 : hmin - load.value >= 0.0) {
-    // Nothing to solve: zero force, or no interpenetration at the given approach.
-    SizeWorkspace(op, n, false, ws);
-    sol.pressure.assign(n, 0.0);
-    Finish(op, h, force_control ? hmin : load.value, nullptr, ws, sol);
-    summary.status = SolverStatus::kNoContact;
-    return summary;
-  }
-  const std::optional<LocalInverseStencil> local_inverse =
-      options.precondition ? op.LocalInverse(InfluenceComponent::kNN) : std::nullopt;
-  const InfluenceCoefficients columns(op.grid(), op.material(), InfluenceComponent::kNN);
-  const ActiveSetProblem pb{op,
-                            h,
-                            load,
-                            columns,
-                            local_inverse ? &*local_inverse : nullptr,
-                            n,
-                            op.grid().element_area(),
-                            force_control};
-  SizeWorkspace(op, n, local_inverse.has_value(), ws);
-  const bool hertz_start = StartPressure(pb, options, sol);
-  FindSegments(pb, ws, sol);
-  ws.residual.assign(pb.n, 0.0);  // zero off the segments, where the stencil reads it too
-  ActiveSetState state;
-  for (int it = 1; it <= options.max_iterations; ++it) {
-    const StepOutcome outcome =
-        ActiveSetStep(pb, options, it == 1 && hertz_start, state, ws, sol, summary);
-    if (outcome == StepOutcome::kRestarted) continue;
-    summary.iterations = it;
-    if (outcome == StepOutcome::kConverged) {
-      summary.status = SolverStatus::kConverged;
-      break;
-    }
-    state.stable_steps = ws.corrected.empty() ? state.stable_steps + 1 : 0;
-    if (!DeflationDue(pb, options, state, summary)) continue;
-    ++state.deflations;
-    const DeflationOutcome deflation = SolveOnContactSet(
-        op, columns, h, load.value, options, options.max_iterations - it, pb.stencil, ws, sol);
-    it += deflation.iterations;
-    summary.iterations = it;
-    if (deflation.converged) {
-      summary.residual = deflation.residual;
-      summary.status = SolverStatus::kConverged;
-      break;
-    }
-    state.displacement_valid = false;  // the pressures were clipped
-    state.conjugate = false;
-    state.stable_steps = 0;
-  }
-  // The carried displacement is A·p of the final pressures when the last step kept it (it
-  // differs from a fresh product by the round-off of at most kRefreshIterations updates,
-  // ~1e-14 relative), and saves the product of the deformed distance.
-  const std::vector<double>* displacement = state.displacement_valid ? &ws.displacement : nullptr;
-  const double approach = FinalApproach(pb, state, &displacement, ws, sol);
-  Finish(op, h, approach, displacement, ws, sol);
-  return summary;
+  Scratch& ws = workspace.scratch();
+  return load.kind == NormalLoad::Kind::kForce
+             ? SolveUnder<ForceControl>(op, h, load, options, ws, sol)
+             : SolveUnder<ApproachControl>(op, h, load, options, ws, sol);
 }
 
 }  // namespace wrc
