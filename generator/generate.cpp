@@ -514,6 +514,10 @@ const char* GeneratorVersion() { return WRC_VERSION; }
 namespace gen {
 
 int ThreadsFor(const GenerateOptions& options, const Cluster* cluster) {
+  if (options.threads < 0 || options.threads > kMaxWorkerThreads) {
+    throw InputError("threads: must be 0 (all cores) … " + std::to_string(kMaxWorkerThreads) +
+                     ", is " + std::to_string(options.threads));
+  }
   if (options.threads > 0) return options.threads;
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   return std::max(1, cores / (cluster ? cluster->local_size() : 1));

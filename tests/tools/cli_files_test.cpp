@@ -164,4 +164,24 @@ TEST_F(CliFiles, OutputsNeverOverwriteTheirInputs) {
   EXPECT_EQ(Run("info " + Quoted(table.string())).exit_code, 0);
 }
 
+// Thread counts far beyond any machine fail to start (the system's thread limit) and ended in
+// std::terminate; every --threads takes 1 … 1024 (0 where it means all cores) and says so.
+TEST_F(CliFiles, ThreadCountsBeyondTheLimitAreRefusedInWords) {
+  const std::string scene = Quoted((fs::path(WRC_SOURCE_DIR) / "tables" / "demo.toml").string());
+  const std::string table = Quoted((dir_ / "t.h5").string());
+  for (const std::string& args :
+       {"generate " + scene + " -o " + table + " --threads 100000",
+        "generate " + scene + " -o " + table + " --threads 0",
+        "verify " + table + " --threads 1025", "verify " + table + " --threads -3",
+        "study tables " + scene + " --threads 5000",
+        "study stability " + Quoted(kCase.string()) + " --threads 2.5"}) {
+    const Outcome outcome = Run(args);
+    EXPECT_EQ(outcome.exit_code, 2) << args << ": " << outcome.err;
+    EXPECT_NE(outcome.err.find("--threads: must be"), std::string::npos)
+        << args << ": " << outcome.err;
+    EXPECT_NE(outcome.err.find("1024"), std::string::npos) << args << ": " << outcome.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "t.h5"));
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/thread_option.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
 #include "wrc/core/scene.h"
@@ -86,7 +87,7 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("-o,--output", *output, "Table to write (HDF5)")->required();
   cmd->add_option("--threads", *threads,
                   "Worker threads (default: all cores, shared among MPI ranks on one machine)")
-      ->check(CLI::Range(1, 4096));
+      ->check(ThreadCount(false));
   cmd->add_flag("--resume", *resume,
                 "Continue an interrupted run from TABLE.h5.journal, reusing its points");
   cmd->add_flag("--quiet", *quiet, "No progress on stderr");

@@ -15,6 +15,7 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/thread_option.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
@@ -431,7 +432,9 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       ->check(GreaterThanZero())
       ->capture_default_str();
   tables->add_option("--seed", *seed, "Seed of the sample points")->capture_default_str();
-  tables->add_option("--threads", *threads, "Worker threads; 0: all cores")->capture_default_str();
+  tables->add_option("--threads", *threads, "Worker threads; 0: all cores")
+      ->check(ThreadCount(true))
+      ->capture_default_str();
   tables->callback([=]() {
     try {
       *exit_code = StudyTables(*scene, *tables_out, *targets, *samples, *seed, *threads);

@@ -17,6 +17,7 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/study_common.h"
+#include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 
@@ -569,7 +570,7 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
   paper->add_option("--out", o->out, "Output directory (CSV, PNG, README.md, inputs/)")
       ->capture_default_str();
   paper->add_option("--threads", o->threads, "Worker threads")
-      ->check(GreaterThanZero())
+      ->check(ThreadCount(false))
       ->capture_default_str();
   paper->add_option("--z-range", o->z_range, "Fig. 13: wheelset heights FROM,TO,STEP, mm")
       ->delimiter(',')

@@ -19,6 +19,7 @@
 #include "tools/wrc/commands.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/study_common.h"
+#include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/profile.h"
@@ -585,7 +586,7 @@ void AddPlanarStudy(CLI::App& study, int* exit_code) {
       ->check(ZeroOrMore())
       ->capture_default_str();
   planar->add_option("--threads", o->threads, "Worker threads")
-      ->check(GreaterThanZero())
+      ->check(ThreadCount(false))
       ->capture_default_str();
   planar->callback([=]() {
     try {

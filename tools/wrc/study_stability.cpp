@@ -19,6 +19,7 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/wheelrail.h"
@@ -541,7 +542,7 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
                         "Without CASE: directory with the profiles of the built-in hard cases");
   stability->add_flag("--quick", *quick, "Built-in hard cases: double every step");
   stability->add_option("--threads", *threads, "Worker threads")
-      ->check(GreaterThanZero())
+      ->check(ThreadCount(false))
       ->capture_default_str();
   stability->callback([=]() {
     try {

@@ -18,6 +18,7 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/thread_option.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
@@ -359,7 +360,8 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
                        : "must be a finite number >= 0, is " + text;
           },
           "NUMBER >= 0"));
-  cmd->add_option("--threads", opt->verify.threads, "Worker threads (default: all cores)");
+  cmd->add_option("--threads", opt->verify.threads, "Worker threads (default: all cores)")
+      ->check(ThreadCount(true));
   cmd->add_option("--csv", opt->csv,
                   "Write every sampled point to this CSV file (point, status, load, exact and "
                   "table values of each output)");

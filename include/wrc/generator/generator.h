@@ -92,13 +92,18 @@ enum class MpiMode {
   kOff,   ///< Never, even under mpirun (each process would then run the whole table).
 };
 
+/// The most worker threads a process starts. Each holds its own solver workspace, so threads
+/// beyond the cores only cost memory; 1024 covers the largest single machines, and far more fail
+/// to start at all (the system's thread limit).
+inline constexpr int kMaxWorkerThreads = 1024;
+
 /// Options of GenerateTable().
 struct GenerateOptions {
   /// The table to write (TABLE.h5). The journal is TABLE.h5.journal, the temporary file
   /// TABLE.h5.tmp. An existing table is replaced (atomically) when the run completes.
   std::filesystem::path output;
   /// Worker threads per process; 0: std::thread::hardware_concurrency(), shared out among the
-  /// MPI ranks running on the same machine.
+  /// MPI ranks running on the same machine. At most kMaxWorkerThreads (InputError otherwise).
   int threads = 0;
   /// Continue from the journal of an interrupted run. Without it, an existing journal is an
   /// error (InputError) so that no work is thrown away by accident.
