@@ -1,12 +1,13 @@
 #include "tools/wrc/table_probe.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 
@@ -19,19 +20,29 @@ namespace wrc::cli {
 namespace {
 
 // The superblock version, read without HDF5: the signature sits at byte 0, 512, 1024, 2048, …
-// and the version byte follows it (HDF5 file format specification, "Superblock"). -1 when no
-// signature is found in the first 64 KiB (then HDF5's own open says what is wrong).
+// and the version byte follows it (HDF5 file format specification, "Superblock"). -1 when the
+// path is not a regular file or no signature is found in the first 64 KiB (then HDF5's own open
+// says what is wrong). Opened non-blocking and checked with fstat so that a FIFO at the path
+// neither blocks the probe nor is read.
 int SuperblockVersion(const std::string& path) {
   static constexpr std::array<unsigned char, 8> kSignature = {0x89, 'H',  'D',  'F',
                                                               '\r', '\n', 0x1a, '\n'};
-  std::ifstream in(path, std::ios::binary);
-  for (std::streamoff offset = 0; in && offset <= 65536; offset = offset == 0 ? 512 : 2 * offset) {
-    std::array<unsigned char, 9> head{};
-    in.seekg(offset);
-    if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return -1;
-    if (std::memcmp(head.data(), kSignature.data(), kSignature.size()) == 0) return head[8];
+  const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return -1;
+  struct stat info {};
+  int version = -1;
+  if (fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
+    for (off_t offset = 0; offset <= 65536; offset = offset == 0 ? 512 : 2 * offset) {
+      std::array<unsigned char, 9> head{};
+      if (pread(fd, head.data(), head.size(), offset) != static_cast<ssize_t>(head.size())) break;
+      if (std::memcmp(head.data(), kSignature.data(), kSignature.size()) == 0) {
+        version = head[8];
+        break;
+      }
+    }
   }
-  return -1;
+  close(fd);
+  return version;
 }
 
 // Everything the table commands read: the runtime's checks, `wrc info`'s view (axes, outputs,
