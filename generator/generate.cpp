@@ -361,6 +361,7 @@ GenerateSummary RunRoot(const RunContext& run) {
   {
     gen::WorkerPool pool(scene, layout, run.threads, run.options.warm_start, queue, collector,
                          run.stop);
+    summary.threads = pool.threads();  // fewer than asked when the system refused some
     int active_ranks = ranks - 1;
     bool stop_sent = false;
     auto last_sync = std::chrono::steady_clock::now();
@@ -459,6 +460,7 @@ GenerateSummary RunOtherRank(const RunContext& run) {
   {
     gen::WorkerPool pool(run.scene, run.layout, run.threads, run.options.warm_start, inbox, outbox,
                          run.stop);
+    summary.threads = pool.threads();
     bool request_open = false, no_more_work = false;
     for (;;) {
       int tag = 0;

@@ -6,6 +6,8 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <new>
+#include <stdexcept>
 #include <utility>
 
 #include "wrc/core/errors.h"
@@ -128,6 +130,12 @@ PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indice
     } else {
       point.message = JoinWarnings(result.warnings);  // the doubts about a solved point
     }
+  } catch (const std::bad_alloc&) {
+    // Not a property of the point: stored as a failed point it would stay in the table after
+    // memory was back. The run stops instead; its journal keeps the points solved so far.
+    throw std::runtime_error(
+        "out of memory while solving a point; the points solved so far are kept: resume with "
+        "fewer --threads or more memory");
   } catch (const std::exception& e) {
     point.status = PointStatus::kError;
     point.values.assign(scene.outputs.size(), kNaN);

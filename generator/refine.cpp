@@ -14,6 +14,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -33,6 +34,7 @@
 #include "wrc/core/errors.h"
 #include "wrc/core/scene.h"
 #include "wrc/generator/interrupt.h"
+#include "wrc/generator/worker_threads.h"
 
 namespace wrc::gen {
 namespace {
@@ -338,39 +340,52 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
   }
   std::mutex mutex;
   std::atomic<std::size_t> next{0}, computed{0};
+  std::exception_ptr failure;  // the first error outside a solve (the journal's disk is full)
   const int workers = std::max(1, threads);
   std::atomic<int> running{workers};
   const auto work = [&]() {
-    for (std::size_t i = next++; i < points.size(); i = next++) {
-      if (done[i]) continue;
-      if (!stop.ClaimPoint()) break;
-      Scene at = scene;
-      for (std::size_t a = 0; a < at.axes.size(); ++a) at.axes[a].values = {points[i][a]};
-      PointResult result =
-          SolveScenePoint(at, std::vector<std::size_t>(at.axes.size(), 0), z_guess[i]);
-      const std::string record = EncodeRecord(i, result);
+    try {
+      for (std::size_t i = next++; i < points.size(); i = next++) {
+        if (done[i]) continue;
+        if (!stop.ClaimPoint()) break;
+        Scene at = scene;
+        for (std::size_t a = 0; a < at.axes.size(); ++a) at.axes[a].values = {points[i][a]};
+        PointResult result =
+            SolveScenePoint(at, std::vector<std::size_t>(at.axes.size(), 0), z_guess[i]);
+        const std::string record = EncodeRecord(i, result);
+        std::lock_guard<std::mutex> lock(mutex);
+        journal->Append(record);
+        run.results[i] = std::move(result);
+        done[i] = 1;
+        computed.fetch_add(1);
+      }
+    } catch (...) {
       std::lock_guard<std::mutex> lock(mutex);
-      journal->Append(record);
-      run.results[i] = std::move(result);
-      done[i] = 1;
-      computed.fetch_add(1);
+      if (!failure) failure = std::current_exception();
+      stop.RequestStop();
     }
     running.fetch_sub(1);
   };
   ProgressReporter progress(progress_mode, points.size(), reused);
-  std::vector<std::thread> pool;
-  for (int t = 0; t < workers; ++t) pool.emplace_back(work);
-  auto last_sync = std::chrono::steady_clock::now();
-  while (running.load() > 0) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    progress.Update(computed.load());
-    if (std::chrono::steady_clock::now() - last_sync > std::chrono::seconds(1)) {
-      std::lock_guard<std::mutex> lock(mutex);  // appends and syncs do not interleave
-      journal->Sync();
-      last_sync = std::chrono::steady_clock::now();
+  WorkerThreads pool(workers, work, "wrc generate");
+  running.fetch_sub(workers - pool.started());
+  try {
+    auto last_sync = std::chrono::steady_clock::now();
+    while (running.load() > 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      progress.Update(computed.load());
+      if (std::chrono::steady_clock::now() - last_sync > std::chrono::seconds(1)) {
+        std::lock_guard<std::mutex> lock(mutex);  // appends and syncs do not interleave
+        journal->Sync();
+        last_sync = std::chrono::steady_clock::now();
+      }
     }
+  } catch (...) {
+    stop.RequestStop();  // the pool's destructor joins workers that then take no new point
+    throw;
   }
-  for (std::thread& t : pool) t.join();
+  pool.Join();
+  if (failure) std::rethrow_exception(failure);
   journal->Sync();
   journal->Close();
   progress.Finish(computed.load());

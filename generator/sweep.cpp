@@ -188,7 +188,9 @@ WorkerPool::WorkerPool(const Scene& scene, const SegmentLayout& layout, int thre
       sink_(sink),
       stop_(stop) {
   running_.store(threads);
-  for (int t = 0; t < threads; ++t) threads_.emplace_back([this] { Work(); });
+  threads_.emplace(
+      threads, [this] { Work(); }, "wrc generate");
+  running_.fetch_sub(threads - threads_->started());
 }
 
 WorkerPool::~WorkerPool() {
@@ -198,9 +200,7 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::Join() {
-  for (std::thread& thread : threads_) {
-    if (thread.joinable()) thread.join();
-  }
+  if (threads_) threads_->Join();
 }
 
 void WorkerPool::RethrowIfFailed() {

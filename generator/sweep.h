@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "wrc/generator/generator.h"
+#include "wrc/generator/worker_threads.h"
 
 namespace wrc::gen {
 
@@ -145,6 +146,8 @@ class WorkerPool {
   WorkerPool& operator=(const WorkerPool&) = delete;
   /// True when every worker has exited.
   bool Finished() const { return running_.load() == 0; }
+  /// How many workers started (fewer than asked when the system refused threads).
+  int threads() const { return threads_ ? threads_->started() : 0; }
   void Join();
   /// Rethrows the first exception a worker hit outside a solve (e.g. the journal's disk is
   /// full); such an exception also stops the other workers.
@@ -161,7 +164,7 @@ class WorkerPool {
   PointSink& sink_;
   StopControl& stop_;
   std::atomic<int> running_{0};
-  std::vector<std::thread> threads_;
+  std::optional<WorkerThreads> threads_;  // started in the constructor body
   std::mutex failure_mutex_;
   std::exception_ptr failure_;
 };

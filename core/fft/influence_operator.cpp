@@ -73,29 +73,31 @@ FftInfluenceOperator::FftInfluenceOperator(const Grid& grid, const CombinedElast
 }
 
 void FftInfluenceOperator::Prepare() const {
-  std::call_once(prepared_, [this] {
-    plan_ = fftw::PaddedPlan2d::Shared(n0_, n1_);
-    fftw::RealBuffer kernel(static_cast<std::size_t>(n0_) * n1_, fftw::Uninitialized{});
-    fftw::ComplexBuffer spectrum(plan_->complex_size(), fftw::Uninitialized{});
-    fftw::ComplexBuffer rows(plan_->row_buffer_size(), fftw::Uninitialized{});
-    fftw::PaddedPlan2d::Staging staging(*plan_);
-    const double inv_n = 1.0 / static_cast<double>(kernel.size());
-    for (std::size_t index = 0; index < spectra_.size(); ++index) {
-      if (!prepared_components_[index]) continue;
-      const InfluenceCoefficients coeffs(grid_, material_, static_cast<InfluenceComponent>(index));
-      std::fill(kernel.data(), kernel.data() + kernel.size(), 0.0);
-      for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
-        const int row = (dj + n0_) % n0_;
-        for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
-          kernel[static_cast<std::size_t>(row) * n1_ + (di + n1_) % n1_] = coeffs.at(di, dj);
-        }
+  if (prepared_.load(std::memory_order_acquire)) return;
+  const std::lock_guard<std::mutex> lock(prepare_mutex_);
+  if (prepared_.load(std::memory_order_relaxed)) return;
+  plan_ = fftw::PaddedPlan2d::Shared(n0_, n1_);
+  fftw::RealBuffer kernel(static_cast<std::size_t>(n0_) * n1_, fftw::Uninitialized{});
+  fftw::ComplexBuffer spectrum(plan_->complex_size(), fftw::Uninitialized{});
+  fftw::ComplexBuffer rows(plan_->row_buffer_size(), fftw::Uninitialized{});
+  fftw::PaddedPlan2d::Staging staging(*plan_);
+  const double inv_n = 1.0 / static_cast<double>(kernel.size());
+  for (std::size_t index = 0; index < spectra_.size(); ++index) {
+    if (!prepared_components_[index]) continue;
+    const InfluenceCoefficients coeffs(grid_, material_, static_cast<InfluenceComponent>(index));
+    std::fill(kernel.data(), kernel.data() + kernel.size(), 0.0);
+    for (int dj = -(grid_.ny - 1); dj <= grid_.ny - 1; ++dj) {
+      const int row = (dj + n0_) % n0_;
+      for (int di = -(grid_.nx - 1); di <= grid_.nx - 1; ++di) {
+        kernel[static_cast<std::size_t>(row) * n1_ + (di + n1_) % n1_] = coeffs.at(di, dj);
       }
-      plan_->Forward(kernel.data(), n0_, n1_, spectrum.data(), rows.data(), staging);
-      auto& s = spectra_[index];
-      s.assign(spectrum.data(), spectrum.data() + spectrum.size());
-      for (auto& v : s) v *= inv_n;
     }
-  });
+    plan_->Forward(kernel.data(), n0_, n1_, spectrum.data(), rows.data(), staging);
+    auto& s = spectra_[index];
+    s.assign(spectrum.data(), spectrum.data() + spectrum.size());
+    for (auto& v : s) v *= inv_n;
+  }
+  prepared_.store(true, std::memory_order_release);
 }
 
 FftInfluenceOperator::~FftInfluenceOperator() = default;

@@ -13,6 +13,7 @@
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/shipped_files.h"
 #include "wrc/core/errors.h"
+#include "wrc/generator/worker_threads.h"
 
 namespace wrc::cli {
 
@@ -74,10 +75,9 @@ void RunParallel(std::size_t n, int threads, const std::function<void(std::size_
   auto worker = [&]() {
     for (std::size_t k = next++; k < n; k = next++) job(k);
   };
-  std::vector<std::thread> pool;
   const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
-  for (int t = 0; t < count; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  gen::WorkerThreads pool(count, worker, "wrc study");
+  pool.Join();
 }
 
 void RunGnuplot(const fs::path& dir, const std::string& name, const std::string& script,

@@ -3,6 +3,7 @@
 // rate against speed, critical speeds, and what each costs.
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
+#include "wrc/generator/worker_threads.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {
@@ -303,11 +305,14 @@ void TableStudy::RunSolver() {
   // The first runs side by side, one thread each: a solver run is hundreds of CPU seconds.
   PrepareSolver();
   std::vector<std::optional<Trajectory>> runs(speeds.size());
-  std::vector<std::thread> threads;
-  for (std::size_t k = 0; k < speeds.size(); ++k) {
-    threads.emplace_back([this, &runs, &speeds, k]() { runs[k] = SolverRun(speeds[k]); });
-  }
-  for (std::thread& t : threads) t.join();
+  std::atomic<std::size_t> next{0};
+  gen::WorkerThreads threads(
+      static_cast<int>(speeds.size()),
+      [this, &runs, &speeds, &next]() {
+        for (std::size_t k = next++; k < speeds.size(); k = next++) runs[k] = SolverRun(speeds[k]);
+      },
+      "wrc study dynamics");
+  threads.Join();
   for (std::size_t k = 0; k < speeds.size(); ++k) {
     if (!runs[k]) continue;
     CompareAt(speeds[k], *runs[k]);

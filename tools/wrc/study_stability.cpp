@@ -23,6 +23,7 @@
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/wheelrail.h"
+#include "wrc/generator/worker_threads.h"
 
 namespace wrc::cli {
 namespace {
@@ -178,9 +179,8 @@ std::vector<Sample> RunAll(const std::vector<Job>& jobs, int threads) {
       out[k] = SolveOne(jobs[k].first, jobs[k].second);
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  gen::WorkerThreads pool(threads, worker, "wrc study stability");
+  pool.Join();
   return out;
 }
 

@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <new>
 #include <random>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -22,6 +24,7 @@
 #include "wrc/core/wheelrail.h"
 #include "wrc/generator/generator.h"
 #include "wrc/generator/interrupt.h"
+#include "wrc/generator/worker_threads.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {
@@ -340,8 +343,10 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
   gen::ClearInterrupt();
   const gen::InterruptHandlers handlers;
   std::atomic<std::size_t> next{0}, solved{0};
+  std::atomic<bool> out_of_memory{false};  // a fault of the run, not of the sampled point
   auto worker = [&]() {
-    for (std::size_t k = next++; k < points.size() && !gen::InterruptRequested(); k = next++) {
+    for (std::size_t k = next++;
+         k < points.size() && !gen::InterruptRequested() && !out_of_memory.load(); k = next++) {
       const auto t0 = std::chrono::steady_clock::now();
       try {
         const WheelRailResult r = SolveWheelRail(CaseAtPoint(scene, points[k]));
@@ -349,6 +354,9 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
                        : r.status == SolverStatus::kNoContact ? 1
                                                               : 2;
         (*values)[k] = SceneOutputValues(scene, r, static_cast<PointStatus>((*status)[k]));
+      } catch (const std::bad_alloc&) {
+        out_of_memory.store(true);
+        break;
       } catch (const std::exception& e) {
         (*status)[k] = 3;
         (*messages)[k] = e.what();
@@ -358,9 +366,14 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
     }
   };
   const int n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  gen::WorkerThreads pool(n, worker, "wrc verify");
+  pool.Join();
+  if (out_of_memory.load()) {
+    throw std::runtime_error("out of memory after " + std::to_string(solved) + " of " +
+                             std::to_string(points.size()) +
+                             " exact solves; no report or file written: run with fewer "
+                             "--threads or more memory");
+  }
   if (gen::InterruptRequested()) {
     throw Interrupted("interrupted after " + std::to_string(solved) + " of " +
                       std::to_string(points.size()) + " exact solves; no report or file written");

@@ -5,6 +5,7 @@
 /// test oracle.
 
 #include <array>
+#include <atomic>
 #include <complex>
 #include <memory>
 #include <mutex>
@@ -99,7 +100,10 @@ class FftInfluenceOperator {
   CombinedElasticity material_;
   int n0_ = 0, n1_ = 0;  // padded transform size
   std::array<bool, 6> prepared_components_{};
-  mutable std::once_flag prepared_;
+  // Not std::call_once: an exception (out of memory) thrown through it unwinds through
+  // pthread_once, which needs glibc to load libgcc_s, and that fails when memory is short.
+  mutable std::mutex prepare_mutex_;
+  mutable std::atomic<bool> prepared_{false};
   mutable std::shared_ptr<const fftw::PaddedPlan2d> plan_;
   // Kernel spectra, scaled by 1/N so that Backward needs no extra pass; empty when not prepared.
   mutable std::array<std::vector<std::complex<double>>, 6> spectra_;
