@@ -4,6 +4,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 namespace wrc::gen {
 
@@ -12,7 +13,14 @@ WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const
   std::string refused;
   for (int t = 0; t < count; ++t) {
     try {
-      threads_.emplace_back(body);
+      threads_.emplace_back([this, body] {
+        try {
+          body();
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(failure_mutex_);
+          if (!failure_) failure_ = std::current_exception();
+        }
+      });
     } catch (const std::system_error& e) {
       refused = e.what();
       break;
@@ -29,10 +37,16 @@ WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const
   }
 }
 
-void WorkerThreads::Join() {
+void WorkerThreads::JoinAll() {
   for (std::thread& thread : threads_) {
     if (thread.joinable()) thread.join();
   }
+}
+
+void WorkerThreads::Join() {
+  JoinAll();
+  const std::lock_guard<std::mutex> lock(failure_mutex_);
+  if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
 }  // namespace wrc::gen

@@ -92,6 +92,27 @@ TEST(WorkerThreads, AllAskedForStartAndTakeTheWholeQueue) {
   EXPECT_EQ(started, kAskedFor);
 }
 
+TEST(WorkerThreads, AnExceptionFromABodyIsRethrownByJoinAndTheOthersFinish) {
+  std::atomic<int> next{0}, done{0};
+  WorkerThreads pool(
+      4,
+      [&] {
+        for (int k = next++; k < kItems; k = next++) {
+          if (k == 10) throw std::runtime_error("item 10 failed");
+          ++done;
+        }
+      },
+      "test pool");
+  try {
+    pool.Join();
+    ADD_FAILURE() << "Join did not rethrow";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "item 10 failed");
+  }
+  EXPECT_EQ(done.load(), kItems - 1);  // the other threads took the rest of the queue
+  EXPECT_NO_THROW(pool.Join());        // rethrown once
+}
+
 TEST(WorkerThreads, ThreadsTheSystemRefusesLeaveTheWorkToTheOthersAndAWarning) {
   // Room for two or three stacks, not for 64.
   const ChildOutcome outcome = RunWithHeadroom(3 * kStack);

@@ -6,7 +6,9 @@
 /// carry all of it, and a warning on stderr says how many there are. Part of the generator
 /// library.
 
+#include <exception>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -14,22 +16,28 @@
 namespace wrc::gen {
 
 /// Up to `count` threads that each run `body`, joined on destruction (also when the owner is
-/// unwinding from an exception, where a joinable std::thread would end the process).
+/// unwinding from an exception, where a joinable std::thread would end the process). An
+/// exception that leaves `body` ends that thread only (escaping a std::thread it would end the
+/// process); the first one is rethrown by Join().
 class WorkerThreads {
  public:
   /// Throws std::runtime_error naming `who` and the system's reason when not one thread starts.
   WorkerThreads(int count, const std::function<void()>& body, const std::string& who);
-  ~WorkerThreads() { Join(); }
+  ~WorkerThreads() { JoinAll(); }
   WorkerThreads(const WorkerThreads&) = delete;
   WorkerThreads& operator=(const WorkerThreads&) = delete;
 
   /// How many threads started (1 … count).
   int started() const { return static_cast<int>(threads_.size()); }
-  /// Waits for every thread; safe to call more than once.
+  /// Waits for every thread, then rethrows the first exception a body let out.
   void Join();
 
  private:
+  void JoinAll();
+
   std::vector<std::thread> threads_;
+  std::mutex failure_mutex_;
+  std::exception_ptr failure_;
 };
 
 }  // namespace wrc::gen
