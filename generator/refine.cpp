@@ -14,7 +14,6 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
-#include <exception>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -340,9 +339,6 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
   }
   std::mutex mutex;
   std::atomic<std::size_t> next{0}, computed{0};
-  std::exception_ptr failure;  // the first error outside a solve (the journal's disk is full)
-  const int workers = std::max(1, threads);
-  std::atomic<int> running{workers};
   const auto work = [&]() {
     try {
       for (std::size_t i = next++; i < points.size(); i = next++) {
@@ -360,18 +356,15 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
         computed.fetch_add(1);
       }
     } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-      stop.RequestStop();
+      stop.RequestStop();  // an error outside a solve (the journal's disk is full) ends the run
+      throw;               // to the pool, whose Join() rethrows it
     }
-    running.fetch_sub(1);
   };
   ProgressReporter progress(progress_mode, points.size(), reused);
-  WorkerThreads pool(workers, work, "wrc generate");
-  running.fetch_sub(workers - pool.started());
+  WorkerThreads pool(std::max(1, threads), work, "wrc generate");
   try {
     auto last_sync = std::chrono::steady_clock::now();
-    while (running.load() > 0) {
+    while (!pool.Finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       progress.Update(computed.load());
       if (std::chrono::steady_clock::now() - last_sync > std::chrono::seconds(1)) {
@@ -385,7 +378,6 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
     throw;
   }
   pool.Join();
-  if (failure) std::rethrow_exception(failure);
   journal->Sync();
   journal->Close();
   progress.Finish(computed.load());

@@ -186,12 +186,9 @@ WorkerPool::WorkerPool(const Scene& scene, const SegmentLayout& layout, int thre
       warm_start_(warm_start),
       source_(source),
       sink_(sink),
-      stop_(stop) {
-  running_.store(threads);
-  threads_.emplace(
-      threads, [this] { Work(); }, "wrc generate");
-  running_.fetch_sub(threads - threads_->started());
-}
+      stop_(stop),
+      threads_(
+          threads, [this] { Work(); }, "wrc generate") {}
 
 WorkerPool::~WorkerPool() {
   // Only reached with workers running when the owner is unwinding from an exception.
@@ -199,9 +196,7 @@ WorkerPool::~WorkerPool() {
   Join();
 }
 
-void WorkerPool::Join() {
-  if (threads_) threads_->Join();
-}
+void WorkerPool::Join() { threads_.Join(); }
 
 void WorkerPool::RethrowIfFailed() {
   std::lock_guard<std::mutex> lock(failure_mutex_);
@@ -222,7 +217,6 @@ void WorkerPool::Work() {
     }
     stop_.RequestStop();
   }
-  running_.fetch_sub(1);
 }
 
 void WorkerPool::SolveSegment(const SegmentTask& task) {

@@ -145,9 +145,9 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
   /// True when every worker has exited.
-  bool Finished() const { return running_.load() == 0; }
+  bool Finished() const { return threads_.Finished(); }
   /// How many workers started (fewer than asked when the system refused threads).
-  int threads() const { return threads_ ? threads_->started() : 0; }
+  int threads() const { return threads_.started(); }
   void Join();
   /// Rethrows the first exception a worker hit outside a solve (e.g. the journal's disk is
   /// full); such an exception also stops the other workers.
@@ -163,10 +163,9 @@ class WorkerPool {
   TaskSource& source_;
   PointSink& sink_;
   StopControl& stop_;
-  std::atomic<int> running_{0};
-  std::optional<WorkerThreads> threads_;  // started in the constructor body
   std::mutex failure_mutex_;
   std::exception_ptr failure_;
+  WorkerThreads threads_;  // last: its threads start once every other member is ready
 };
 
 }  // namespace wrc::gen

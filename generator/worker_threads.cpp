@@ -12,6 +12,7 @@ WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const
   threads_.reserve(static_cast<std::size_t>(std::max(count, 0)));
   std::string refused;
   for (int t = 0; t < count; ++t) {
+    unfinished_.fetch_add(1);
     try {
       threads_.emplace_back([this, body] {
         try {
@@ -20,8 +21,10 @@ WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const
           const std::lock_guard<std::mutex> lock(failure_mutex_);
           if (!failure_) failure_ = std::current_exception();
         }
+        unfinished_.fetch_sub(1);
       });
     } catch (const std::system_error& e) {
+      unfinished_.fetch_sub(1);
       refused = e.what();
       break;
     }

@@ -6,6 +6,7 @@
 /// carry all of it, and a warning on stderr says how many there are. Part of the generator
 /// library.
 
+#include <atomic>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -29,12 +30,15 @@ class WorkerThreads {
 
   /// How many threads started (1 … count).
   int started() const { return static_cast<int>(threads_.size()); }
+  /// True when every started thread has left its body.
+  bool Finished() const { return unfinished_.load() == 0; }
   /// Waits for every thread, then rethrows the first exception a body let out.
   void Join();
 
  private:
   void JoinAll();
 
+  std::atomic<int> unfinished_{0};
   std::vector<std::thread> threads_;
   std::mutex failure_mutex_;
   std::exception_ptr failure_;
