@@ -87,7 +87,7 @@ void BM_Solve(benchmark::State& state, const std::string& wrc, const std::string
 
 int main(int argc, char** argv) {
   const std::string wrc = std::string(WRC_BINARY_DIR) + "/wrc";
-  const fs::path cases = fs::path(WRC_SHARED_DIR) / "reference" / "cases";
+  const fs::path cases = fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases";
   std::vector<std::string> groups = {"mbench_curved", "heavy_haul"};
   if (const char* env = std::getenv("WRC_BENCH_GROUPS")) {
     groups.clear();

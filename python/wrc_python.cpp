@@ -300,6 +300,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
 PYBIND11_MODULE(wrc, m) {
   m.doc() = "wrc runtime: precomputed wheel-rail contact tables and wheelsets over numpy arrays";
   py::register_exception<wrc::TableError>(m, "TableError", PyExc_RuntimeError);
+  m.attr("__version__") = WRC_VERSION;
   m.attr("FLAG_CLAMPED") = WRC_FLAG_CLAMPED;
   m.attr("FLAG_STATUS") = WRC_FLAG_STATUS;
   m.attr("FLAG_FIXED") = WRC_FLAG_FIXED;

@@ -1,6 +1,7 @@
 #include "wrc/core/toml_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -63,13 +64,23 @@ int EditDistance(std::string_view a, std::string_view b) {
   return at(rows - 1, cols - 1);
 }
 
+namespace {
+std::string Lowercase(std::string_view text) {
+  std::string lower(text);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower;
+}
+}  // namespace
+
 std::string SuggestName(std::string_view name, const std::vector<std::string_view>& candidates) {
+  // Keys are lowercase, and a capital is how users write quantities (Fz): case costs nothing.
   // Short names tolerate one edit, longer ones two; more would suggest unrelated names.
   const int limit = name.size() <= 3 ? 1 : 2;
+  const std::string lower = Lowercase(name);
   std::string_view best;
   int best_distance = limit + 1;
   for (std::string_view candidate : candidates) {
-    const int distance = EditDistance(name, candidate);
+    const int distance = EditDistance(lower, Lowercase(candidate));
     if (distance < best_distance) {
       best_distance = distance;
       best = candidate;
@@ -101,7 +112,27 @@ void SourceFile::FailAt(const toml::source_position& where, std::string_view pat
   throw InputError(message);
 }
 
+namespace {
+// HDF5's format signature, at offset 0 or after a user block of 512 · 2^k bytes.
+bool LooksLikeHdf5(std::string_view text) {
+  constexpr std::string_view kSignature("\x89HDF\r\n\x1a\n", 8);
+  for (std::size_t offset = 0; offset + kSignature.size() <= text.size();
+       offset = offset == 0 ? 512 : 2 * offset) {
+    if (text.substr(offset, kSignature.size()) == kSignature) return true;
+  }
+  return false;
+}
+}  // namespace
+
 toml::table SourceFile::Parse(std::string_view text) const {
+  // A table or another binary file given where a TOML file belongs: say so, not "invalid utf-8".
+  if (LooksLikeHdf5(text)) {
+    throw InputError(name_ + ": an HDF5 file (a wrc table?), not a TOML case or scene file; " +
+                     "'wrc info " + name_ + "' describes a table");
+  }
+  if (text.find('\0') != std::string_view::npos) {
+    throw InputError(name_ + ": a binary file (it holds NUL bytes), not a TOML case or scene file");
+  }
   try {
     return toml::parse(text, name_);
   } catch (const toml::parse_error& error) {

@@ -1,4 +1,4 @@
-// The visible half-space cases of ../shared/reference against CONTACT's results.
+// The half-space cases of tests/data/reference against CONTACT's results.
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 std::vector<fs::path> HalfspaceCases() {
   std::vector<fs::path> cases;
-  const fs::path dir = fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace";
+  const fs::path dir = fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "halfspace";
   if (!fs::exists(dir)) return cases;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().extension() == ".toml") cases.push_back(e.path());
@@ -27,7 +27,7 @@ std::vector<fs::path> HalfspaceCases() {
 
 TEST(HalfspaceReference, MatchesContact) {
   const auto cases = HalfspaceCases();
-  ASSERT_EQ(cases.size(), 22u) << "reference cases missing under " << WRC_SHARED_DIR;
+  ASSERT_EQ(cases.size(), 22u) << "reference cases missing under " << WRC_TEST_DATA_DIR;
   for (const fs::path& path : cases) {
     SCOPED_TRACE(path.filename().string());
     fs::path ref_path = path;

@@ -74,7 +74,7 @@ std::vector<ReferenceCase> LoadReferenceCases() {
   const std::string hertz_prefix = "# Hertz (";
   std::vector<ReferenceCase> cases;
   const std::filesystem::path folder =
-      std::filesystem::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace";
+      std::filesystem::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "halfspace";
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.path().extension() != ".toml") continue;
     std::ifstream in(entry.path());
@@ -117,7 +117,7 @@ void ExpectMatchesPrinted(double got, const PrintedValue& printed, const std::st
 TEST(Hertz, MatchesReferenceCaseHeaders) {
   const std::vector<ReferenceCase> cases = LoadReferenceCases();
   // 22 half-space cases, each with a Hertz line (reference/README.md).
-  ASSERT_EQ(cases.size(), 22u) << "reference cases not found under " << WRC_SHARED_DIR;
+  ASSERT_EQ(cases.size(), 22u) << "reference cases not found under " << WRC_TEST_DATA_DIR;
   bool saw_long_x = false, saw_long_y = false, saw_circle = false;
   for (const ReferenceCase& c : cases) {
     SCOPED_TRACE(c.name);
@@ -137,7 +137,7 @@ TEST(Hertz, MatchesReferenceCaseHeaders) {
 }
 
 // Reference values hard-coded from the header comments of
-// /work/shared/reference/cases/halfspace/{ab1,ab03,ab3}_normal.toml (G = 82000 N/mm², ν = 0.28,
+// tests/data/reference/cases/halfspace/{ab1,ab03,ab3}_normal.toml (G = 82000 N/mm², ν = 0.28,
 // fn = 10 kN), so that this check does not depend on the parser above.
 TEST(Hertz, HardCodedReferenceValues) {
   struct Expected {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Runs the user commands documented in README.md and docs/**/*.md, as a user would.
 
-The commands run in a copy of the project that has no test data next to it (no ../shared), with
+The commands run in a copy of the project with nothing next to it, as a user's clone has it, with
 the build's `wrc` first in PATH, and each must exit with 0. What runs:
 
 - fenced blocks marked ```sh, ```bash or ```console, except those marked `no-run` after the
@@ -137,11 +137,10 @@ def main():
     python_dir = [os.path.dirname(sys.argv[3])] if len(sys.argv) > 3 and sys.argv[3] else []
     work = tempfile.mkdtemp(prefix="wrc-docs-")
     try:
-        copy = os.path.join(work, "wrc")  # nothing else in `work`: no ../shared
+        copy = os.path.join(work, "wrc")  # nothing else in `work`
         copy_project(source, copy)
         os.symlink(build, os.path.join(copy, "build"))
         env = dict(os.environ, PATH=os.pathsep.join([build] + python_dir + [os.environ["PATH"]]))
-        env.pop("WRC_SHARED_DIR", None)
         # The table that TABLE.h5 stands for.
         prelude = run_block("wrc generate tables/demo.toml -o demo-table.h5 --quiet", copy, env)
         if prelude.returncode != 0:

@@ -4,7 +4,9 @@
 // a failed write leaves no half table.
 
 #include <gtest/gtest.h>
+
 #include <sys/stat.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -38,7 +40,14 @@ void ExpectRefused(const fs::path& table, const std::string& problem) {
         RunCommand(Quoted(WrcBinary()) + command + Quoted(table.string()), table.parent_path());
     EXPECT_EQ(result.exit_code, 2) << command << ": " << result.err;
     EXPECT_NE(result.err.find(problem), std::string::npos) << command << ": " << result.err;
-    EXPECT_TRUE(result.out.empty() || command == " verify --samples 2 ") << result.out;
+    if (command == " info ") {
+      EXPECT_TRUE(result.out.empty()) << result.out;
+    }
+    if (command == " info --json ") {  // an error object naming the problem, as solve --json
+      const nlohmann::json error = nlohmann::json::parse(result.out, nullptr, false);
+      EXPECT_EQ(error.value("status", ""), "error") << result.out;
+      EXPECT_NE(error.value("message", "").find(problem), std::string::npos) << result.out;
+    }
   }
 }
 
@@ -139,7 +148,9 @@ TEST(CliDamagedTable, FloatOfAbsurdSize) {
 // Damaged tables in HDF5's earliest format (no metadata checksums) found by mutating one: HDF5
 // 1.10 crashes reading them (a B-tree header, an attribute lookup by name, a compact dataset
 // read past its buffer). The commands read such files in a child process first and report the
-// crash as damage; plot reads the same way.
+// crash as damage; plot reads the same way. Whether HDF5 crashes on them depends on what its heap
+// holds (the same file may instead give HDF5's own error), so either is accepted: exit 2 with a
+// message naming the file, never a signal.
 TEST(CliDamagedTable, EarliestFormatFilesThatCrashHdf5AreErrors) {
   const fs::path dir = fs::path(WRC_SOURCE_DIR) / "tests" / "runtime" / "damaged";
   for (const char* name : {"crashes_hdf5_btree_header.h5", "crashes_hdf5_attribute_exists.h5",
@@ -148,12 +159,12 @@ TEST(CliDamagedTable, EarliestFormatFilesThatCrashHdf5AreErrors) {
     ScratchDir scratch("damaged_crashes_hdf5");
     const fs::path table = scratch / name;
     fs::copy_file(dir / name, table);
-    ExpectRefused(table, name + std::string(": damaged table: reading its HDF5 metadata crashed"));
+    ExpectRefused(table, name);
     const CommandResult plot = RunCommand(
         Quoted(WrcBinary()) + " plot table " + Quoted(table.string()) + " --output fy --x y",
         scratch.path());
     EXPECT_EQ(plot.exit_code, 2) << plot.err;
-    EXPECT_NE(plot.err.find("crashed the HDF5 library"), std::string::npos) << plot.err;
+    EXPECT_NE(plot.err.find(name), std::string::npos) << plot.err;
   }
 }
 

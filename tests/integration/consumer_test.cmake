@@ -8,6 +8,9 @@
 #                  each executable reads TABLE and checks a value.
 #   MODE=example   builds runtime/examples/wheelset_dynamics.c (EXAMPLE) with the project in
 #                  example/ against PACKAGE_DIR in WORK_DIR and runs it on the wheelset TABLE.
+#   MODE=pkgconfig compiles consumer/sim.c with the C compiler CC as a plain build would,
+#                  `CC sim.c $(pkg-config --cflags --libs wrc-runtime)` with PKG_CONFIG_PATH in
+#                  PREFIX, in WORK_DIR, runs it on TABLE and checks that it links the shared runtime.
 #   MODE=python    installs the python component into PYTHON_PREFIX (emptied first) and has PYTHON
 #                  import the installed module from there and check the same value.
 cmake_minimum_required(VERSION 3.22)
@@ -104,7 +107,7 @@ function(install_python)
     message(FATAL_ERROR "the python component installed no module into ${PYTHON_PREFIX}")
   endif()
   get_filename_component(module_dir ${module} DIRECTORY)
-  run(${PYTHON} ${SOURCE_DIR}/../python/check_installed.py ${module_dir} ${TABLE})
+  run(${PYTHON} ${SOURCE_DIR}/../python/check_installed.py ${module_dir} ${TABLE} ${VERSION})
   message(STATUS "${run_output}")
 endfunction()
 
@@ -124,14 +127,35 @@ function(build_example)
   message(STATUS "${run_output}")
 endfunction()
 
+function(build_with_pkg_config)
+  file(REMOVE_RECURSE ${WORK_DIR})
+  file(MAKE_DIRECTORY ${WORK_DIR})
+  file(GLOB_RECURSE pc_file ${PREFIX}/wrc-runtime.pc)
+  if(NOT pc_file)
+    message(FATAL_ERROR "no wrc-runtime.pc installed under ${PREFIX}")
+  endif()
+  get_filename_component(pc_dir ${pc_file} DIRECTORY)
+  set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+  run(pkg-config --cflags --libs wrc-runtime)
+  string(STRIP "${run_output}" flags)
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  run(${CC} -std=c99 -I${SOURCE_DIR}/consumer ${SOURCE_DIR}/consumer/sim.c ${flags} -lm
+      -o ${WORK_DIR}/sim_c)
+  run(${WORK_DIR}/sim_c ${TABLE})  # no LD_LIBRARY_PATH: the .pc file's rpath finds the library
+  message(STATUS "${run_output}")
+  check_linkage(${WORK_DIR}/sim_c)
+endfunction()
+
 if(MODE STREQUAL "install")
   install_runtime()
 elseif(MODE STREQUAL "consumer")
   build_consumer()
 elseif(MODE STREQUAL "example")
   build_example()
+elseif(MODE STREQUAL "pkgconfig")
+  build_with_pkg_config()
 elseif(MODE STREQUAL "python")
   install_python()
 else()
-  message(FATAL_ERROR "MODE must be install, consumer, example or python, not '${MODE}'")
+  message(FATAL_ERROR "MODE must be install, consumer, example, pkgconfig or python, not '${MODE}'")
 endif()

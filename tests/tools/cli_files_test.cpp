@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
 const fs::path kCase =
-    fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
+    fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
 
 struct Outcome {
   int exit_code = -1;

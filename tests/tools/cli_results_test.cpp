@@ -23,7 +23,7 @@ using nlohmann::json;
 
 const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
 const fs::path kHalfspaceCase =
-    fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
+    fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "halfspace" / "ab03_ceta0.003.toml";
 const fs::path kProfiles = fs::path(WRC_SOURCE_DIR) / "tables" / "profiles";
 
 using wrc::test_support::ReadFile;

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const fs::path kWrc = fs::path(WRC_BINARY_DIR) / "wrc";
-const fs::path kHalfspaceCases = fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "halfspace";
+const fs::path kHalfspaceCases = fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "halfspace";
 
 // CONTACT prints four significant digits and wrc meets the reference cases far closer than this
 // (score-against-reference: < 0.01 % of the load); 0.5 % of the load is the tolerance the

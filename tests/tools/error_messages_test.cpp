@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kWrcBinary = fs::path(WRC_BINARY_DIR) / "wrc";
-const fs::path kProfiles = fs::path(WRC_SHARED_DIR) / "profiles";
+const fs::path kProfiles = fs::path(WRC_TEST_DATA_DIR) / "profiles";
 
 // The Manchester benchmark pair with coarse elements, pressed 0.3 mm together (about 30 kN):
 // every case below fails, or finds no contact, before any fine solve, so the tests stay fast.
@@ -139,6 +139,17 @@ TEST_F(ErrorMessages, ValidCaseSolves) {
 TEST_F(ErrorMessages, MissingCaseFile) {
   const fs::path missing = dir_ / "no_such_case.toml";
   ExpectBadInput(Solve(missing), {missing.string(), "cannot open"});
+}
+
+TEST_F(ErrorMessages, ATableGivenAsCaseIsNamedSo) {
+  // HDF5's signature at 0 and after a 512-byte user block; then any binary file.
+  const std::string signature("\x89HDF\r\n\x1a\n", 8);
+  ExpectBadInput(Solve(WriteFile("table.h5", signature + std::string(100, '\0'))),
+                 {"table.h5", "an HDF5 file (a wrc table?), not a TOML case", "wrc info"});
+  ExpectBadInput(Solve(WriteFile("ub.h5", std::string(512, '\0') + signature)),
+                 {"ub.h5", "an HDF5 file"});
+  ExpectBadInput(Solve(WriteFile("blob.bin", std::string("a = 1\0", 6))),
+                 {"blob.bin", "a binary file (it holds NUL bytes)"});
 }
 
 TEST_F(ErrorMessages, MissingProfileFile) {

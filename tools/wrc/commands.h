@@ -2,8 +2,10 @@
 // Subcommands of the `wrc` command-line tool.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace wrc::cli {
 
@@ -41,6 +43,22 @@ inline CLI::Validator GreaterThanZero() {
 }
 inline CLI::Validator ZeroOrMore() {
   return NumberCheck([](double v) { return v >= 0.0; }, "0 or more", ">= 0");
+}
+
+/// Where a user finds a page of the user reference (`relative` to docs/), for --help texts: the
+/// installed copy beside an installed wrc (PREFIX/bin/wrc: PREFIX/share/doc/wrc/...), the
+/// checkout's docs/ beside a build tree (build/wrc), else "docs/..." as in the repository.
+inline std::string DocFile(const std::string& relative) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path above = self.parent_path().parent_path();
+    for (const std::filesystem::path& page :
+         {above / "share" / "doc" / "wrc" / relative, above / "docs" / relative}) {
+      if (std::filesystem::is_regular_file(page, ec)) return page.lexically_normal().string();
+    }
+  }
+  return "docs/" + relative;
 }
 
 /// Registers `wrc solve` on `app`; the callback stores its exit code in *exit_code.

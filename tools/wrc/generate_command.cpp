@@ -82,7 +82,8 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
   auto resume = std::make_shared<bool>(false);
   auto quiet = std::make_shared<bool>(false);
   auto cold_start = std::make_shared<bool>(false);
-  cmd->add_option("SCENE", *scene_path, "Scene file (TOML, docs/reference/case-files.md)")
+  cmd->add_option("SCENE", *scene_path,
+                  "Scene file (TOML, " + DocFile("reference/case-files.md") + ")")
       ->required();
   cmd->add_option("-o,--output", *output, "Table to write (HDF5)")->required();
   cmd->add_option("--threads", *threads,

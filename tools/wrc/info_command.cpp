@@ -208,7 +208,11 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       }
       *exit_code = kExitOk;
     } catch (const std::exception& e) {
+      // As wrc solve --json: a program reading stdout gets an error object, not nothing.
       std::cerr << "wrc info: error: " << e.what() << '\n';
+      if (*as_json) {
+        std::cout << nlohmann::json{{"status", "error"}, {"message", e.what()}}.dump(1) << '\n';
+      }
       *exit_code = kExitBadInput;
     }
   });

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -35,20 +36,31 @@ double Seconds(std::chrono::steady_clock::time_point t0) {
 }
 
 // A short human-readable summary of the JSON result.
+// A number for a reader: 6 significant digits, as CONTACT prints about 4 (the JSON keeps all).
+std::string Human(const json& value) {
+  if (!value.is_number()) return value.dump();
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value.get<double>());
+  return text;
+}
+
 void PrintHuman(const json& j) {
   std::cout << "status " << j["status"].get<std::string>() << "\n";
   if (j.contains("rail_forces_track")) {
     const json& f = j["rail_forces_track"];
-    std::cout << "forces on the rail (track): fx " << f["fx"] << " N, fy " << f["fy"] << " N, fz "
-              << f["fz"] << " N\nwheelset z " << j["wheelset"]["z"] << " mm\n";
+    std::cout << "forces on the rail (track): fx " << Human(f["fx"]) << " N, fy " << Human(f["fy"])
+              << " N, fz " << Human(f["fz"]) << " N\nwheelset z " << Human(j["wheelset"]["z"])
+              << " mm\n";
   }
   int n = 0;
   for (const json& p : j["patches"]) {
-    std::cout << "patch " << ++n << ": fn " << p["fn"] << " N, fx " << p["fx"] << " N, fs "
-              << p["fs"] << " N, mn " << p["mn"] << " N.mm, pmax " << p["pmax"]
-              << " N/mm2, contact " << p["n_contact"] << ", slip " << p["n_slip"] << "\n";
+    std::cout << "patch " << ++n << ": fn " << Human(p["fn"]) << " N, fx " << Human(p["fx"])
+              << " N, fs " << Human(p["fs"]) << " N, mn " << Human(p["mn"]) << " N.mm, pmax "
+              << Human(p["pmax"]) << " N/mm2, contact " << p["n_contact"] << ", slip "
+              << p["n_slip"];
+    std::cout << "\n";
   }
-  std::cout << "time " << j["timing_s"]["total"] << " s\n";
+  std::cout << "time " << Human(j["timing_s"]["total"]) << " s\n";
 }
 
 json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
@@ -236,12 +248,13 @@ void EndSolveOnInterrupt(bool as_json) {
 
 void AddSolveCommand(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand(
-      "solve", "Solve one contact case (a case file, docs/reference/case-files.md)");
+      "solve", "Solve one contact case (a case file, " + DocFile("reference/case-files.md") + ")");
   auto case_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
   cmd->add_option("CASE", *case_path, "Case file (TOML)")->required();
-  cmd->add_flag("--json", *as_json, "Print the result as one JSON object (docs/reference/json.md)");
+  cmd->add_flag("--json", *as_json,
+                "Print the result as one JSON object (" + DocFile("reference/json.md") + ")");
   cmd->add_option("--out", *out_dir, "Also write the solution fields into this directory");
   cmd->callback([=]() {
     const auto t0 = std::chrono::steady_clock::now();

@@ -112,6 +112,27 @@ void WriteSolverLines(const fs::path& path, const std::vector<SolverRow>& rows,
   }
 }
 
+// The plot's ranges, set from the drawn points (time, error of fy): gnuplot's own would be
+// empty, with warnings, when every case has one coarse size (two sizes given). Each range spans
+// its points and a quarter of a decade more on each side; a single value a decade around it.
+std::string LogRanges(const std::vector<SolverRow>& rows, double finest) {
+  double x_lo = INFINITY, x_hi = 0.0, y_lo = INFINITY, y_hi = 0.0;
+  for (const SolverRow& r : rows) {
+    const double error = FyError(rows, r, finest);
+    if (r.size == finest || !(r.seconds > 0.0) || !(error > 0.0)) continue;
+    x_lo = std::min(x_lo, r.seconds), x_hi = std::max(x_hi, r.seconds);
+    y_lo = std::min(y_lo, error), y_hi = std::max(y_hi, error);
+  }
+  if (!(x_hi > 0.0)) return "set xrange [1e-3:1]\nset yrange [1e-6:1]\n";  // nothing to draw
+  auto range = [](double lo, double hi) {
+    const double margin = lo == hi ? std::sqrt(10.0) : std::pow(10.0, 0.25);
+    std::ostringstream text;
+    text << '[' << lo / margin << ':' << hi * margin << "]\n";
+    return text.str();
+  };
+  return "set xrange " + range(x_lo, x_hi) + "set yrange " + range(y_lo, y_hi);
+}
+
 // Error of fy against time: each case its own coloured line through its element sizes (labelled
 // at each point), and a ring around the solves at each case's own element size.
 void DrawSolverPicture(const fs::path& out, const std::vector<SolverRow>& rows,
@@ -131,7 +152,7 @@ void DrawSolverPicture(const fs::path& out, const std::vector<SolverRow>& rows,
      << "set xlabel 'time per solve, s'\n"
      << "set ylabel 'error of fy against " << sizes.back() << " mm elements, fraction of fz'\n"
      << "set title 'Solver accuracy against cost (point labels: element size dx = ds, mm)'\n"
-     << "set offsets graph 0.05, graph 0.1, graph 0.05, graph 0.05\nplot ";
+     << LogRanges(rows, sizes.back()) << "plot ";
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string colour = std::string("rgb '") + colours[k % 8] + "'";
     gp << "'solver_lines.dat' index " << k << " using 2:3 with linespoints lw 2 pt 7 lc " << colour

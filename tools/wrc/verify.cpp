@@ -380,6 +380,29 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
   }
 }
 
+namespace {
+
+// The mean time of one lookup at the sample points. A first pass warms the caches and the
+// kernels' dispatch (a cold first lookup costs microseconds); then whole passes are timed until
+// 10 ms have passed, so that a few samples still give a steady figure.
+double MeanLookupSeconds(const Table& table, const std::vector<std::vector<double>>& points,
+                         double* out) {
+  if (points.empty()) return 0.0;
+  for (const std::vector<double>& point : points) table.try_eval(point.data(), out);
+  constexpr double kMinSeconds = 0.01;
+  const auto t0 = std::chrono::steady_clock::now();
+  double elapsed = 0.0;
+  std::size_t lookups = 0;
+  while (elapsed < kMinSeconds) {
+    for (const std::vector<double>& point : points) table.try_eval(point.data(), out);
+    lookups += points.size();
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return elapsed / static_cast<double>(lookups);
+}
+
+}  // namespace
+
 Verification VerifyTable(const VerifyOptions& opt) {
   auto stored = LoadStoredScene(opt.table);
   const Scene& scene = stored->scene;
@@ -449,13 +472,7 @@ Verification VerifyTable(const VerifyOptions& opt) {
     const bool cubic = mode == Interpolation::kCubic;
     std::vector<double> out(n_out);
     int flagged = 0, no_value = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      table.try_eval(points[k].data(), out.data());
-    }
-    const double lookup =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
-        std::max<std::size_t>(1, points.size());
+    const double lookup = MeanLookupSeconds(table, points, out.data());
     for (std::size_t k = 0; k < points.size(); ++k) {
       const int code = table.try_eval(points[k].data(), out.data());
       if (code < 0) {

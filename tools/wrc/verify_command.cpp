@@ -211,6 +211,29 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
             << " exact solves; data in " << data.string() << ")\n";
 }
 
+// A percentage in a column of `width`, or "-" where no sample gave one (no sample in cells
+// where the patch count changes, say): a reader sees "none", not nan%.
+std::string PercentColumn(double fraction, int width) {
+  char text[40];
+  if (std::isfinite(fraction)) {
+    std::snprintf(text, sizeof text, "%*.3f%%", width - 1, 100 * fraction);
+  } else {
+    std::snprintf(text, sizeof text, "%*s", width, "-");
+  }
+  return text;
+}
+
+// An absolute error in a column of `width`, or "-" where no sample gave one.
+std::string NumberColumn(double value, int width) {
+  char text[40];
+  if (std::isfinite(value)) {
+    std::snprintf(text, sizeof text, "%*.4g", width, value);
+  } else {
+    std::snprintf(text, sizeof text, "%*s", width, "-");
+  }
+  return text;
+}
+
 void PrintText(const Verification& v, const CommandOptions& opt) {
   const json& r = v.report;
   const json& counts = r["exact_status"];
@@ -237,21 +260,23 @@ void PrintText(const Verification& v, const CommandOptions& opt) {
       std::printf("  %-14s %11.4g %11.4g %11.4g %9.3g", it.key().c_str(), Get(o["max_abs"]),
                   Get(o["rms"]), Get(o["p95_abs"]), Get(o["max_rel"]));
       if (o.contains("load")) {
-        std::printf(" | %7.3f%% %7.3f%% %7.3f%%", 100 * Get(o["load"]["p95"]),
-                    100 * Get(o["load"]["rms"]), 100 * Get(o["load"]["max"]));
-        std::printf(" | %8.3f%% %8.3f%%", 100 * Get(o["cells"]["same_patches"]["max_load"]),
-                    100 * Get(o["cells"]["patch_change"]["max_load"]));
+        std::printf(" | %s %s %s", PercentColumn(Get(o["load"]["p95"]), 8).c_str(),
+                    PercentColumn(Get(o["load"]["rms"]), 8).c_str(),
+                    PercentColumn(Get(o["load"]["max"]), 8).c_str());
+        std::printf(" | %s %s",
+                    PercentColumn(Get(o["cells"]["same_patches"]["max_load"]), 9).c_str(),
+                    PercentColumn(Get(o["cells"]["patch_change"]["max_load"]), 9).c_str());
       } else {
-        std::printf(" | %8s %8s %8s | %9.4g %9.4g", "", "", "",
-                    Get(o["cells"]["same_patches"]["max_abs"]),
-                    Get(o["cells"]["patch_change"]["max_abs"]));
+        std::printf(" | %8s %8s %8s | %s %s", "", "", "",
+                    NumberColumn(Get(o["cells"]["same_patches"]["max_abs"]), 9).c_str(),
+                    NumberColumn(Get(o["cells"]["patch_change"]["max_abs"]), 9).c_str());
       }
       std::printf("\n");
     }
   }
   std::printf(
       "\n/load: error as a fraction of the local wheel load; same / chg: the largest error in "
-      "cells where the patch count is the same at every corner / changes\n");
+      "cells where the patch count is the same at every corner / changes (-: no sample there)\n");
 }
 
 // The outputs that fail the gate, each with why: max_rel above the tolerance, or no sample

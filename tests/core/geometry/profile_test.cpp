@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
 
 std::string ProfilePath(const std::string& name) {
-  return std::string(WRC_SHARED_DIR) + "/profiles/" + name;
+  return std::string(WRC_TEST_DATA_DIR) + "/profiles/" + name;
 }
 
 /// A scratch directory per test, removed afterwards.
@@ -93,7 +93,7 @@ void Circle(double radius, double y_from, double y_to, int n, std::vector<double
 }
 
 // ---------------------------------------------------------------------------------------------
-// Every profile in shared/profiles
+// Every profile in tests/data/profiles
 
 struct FileExpectation {
   std::string name;

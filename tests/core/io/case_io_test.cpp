@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kCasesDir = fs::path(WRC_SHARED_DIR) / "reference" / "cases";
+const fs::path kCasesDir = fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases";
 
 // A complete wheel-rail case; tests replace single lines to make it wrong in one place.
 const std::string kWheelRailCase = R"(# test case
@@ -197,9 +197,8 @@ TEST(CaseIo, GrooveAbsolutePlacement) {
   EXPECT_DOUBLE_EQ(c.method.combine_distance, 4.0);
   // Paths are resolved against the case file's folder and normalised.
   EXPECT_TRUE(c.rail.path.is_absolute());
-  EXPECT_EQ(
-      c.rail.path,
-      fs::absolute(fs::path(WRC_SHARED_DIR) / "profiles" / "groove_r1005.prr").lexically_normal());
+  EXPECT_EQ(c.rail.path, fs::absolute(fs::path(WRC_TEST_DATA_DIR) / "profiles" / "groove_r1005.prr")
+                             .lexically_normal());
   EXPECT_EQ(c.rail.path_as_written, "../../../profiles/groove_r1005.prr");
   EXPECT_EQ(c.wheel.path.filename(), "circ_r10.prw");
 }
@@ -522,7 +521,7 @@ TEST(CaseIo, LoadReportsBrokenProfilesAtTheirCaseKey) {
   const fs::path dir = fs::temp_directory_path() / "wrc_case_io_broken_profile";
   fs::remove_all(dir);
   fs::create_directories(dir / "profiles");
-  const fs::path shared = fs::path(WRC_SHARED_DIR) / "profiles";
+  const fs::path shared = fs::path(WRC_TEST_DATA_DIR) / "profiles";
   fs::copy_file(shared / "MBench_UIC60_v3.prr", dir / "profiles" / "rail.prr");
   fs::copy_file(shared / "MBench_S1002_v3.prw", dir / "profiles" / "wheel.prw");
   const fs::path file = dir / "case.toml";

@@ -355,12 +355,12 @@ TEST(SceneIo, UnitsForTableAttributes) {
 }
 
 TEST(SceneIo, LoadSceneResolvesProfilesNextToTheFile) {
-  const fs::path dir = fs::path(WRC_SHARED_DIR) / "profiles";
+  const fs::path dir = fs::path(WRC_TEST_DATA_DIR) / "profiles";
   const fs::path scene_dir = fs::temp_directory_path() / "wrc_scene_io_test" / "scenes";
   fs::create_directories(scene_dir);
   const fs::path file = scene_dir / "scene.toml";
   std::string text = SceneWith(kSpecTable);
-  // Point the profiles at the shared folder with an absolute path.
+  // Point the profiles at the test data folder with an absolute path.
   const std::string rail_line = "profile = \"../profiles/MBench_UIC60_v3.prr\"";
   const std::string wheel_line = "profile = \"../profiles/MBench_S1002_v3.prw\"";
   text.replace(text.find(rail_line), rail_line.size(),

@@ -28,7 +28,7 @@ struct Pair {
 
 // The rail and the wheel of a reference case, placed as the solver places them (right side).
 Pair PlacedPair(const std::string& group, const std::string& name) {
-  Case c = LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / group / (name + ".toml"));
+  Case c = LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / group / (name + ".toml"));
   WheelsetKinematics kin;
   kin.y = c.state.y;
   kin.roll = c.state.roll;

@@ -152,7 +152,7 @@ double LargestJump(Case c, double z0, double z1, int steps) {
 }
 
 Case HeavyHaul(ReferenceSurface reference, double combine_distance) {
-  Case c = LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "heavy_haul" /
+  Case c = LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "heavy_haul" /
                     "heavy_haul_z1.087.toml");
   c.effects.tangential = false;
   c.method.reference = reference;

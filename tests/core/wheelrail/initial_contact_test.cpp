@@ -25,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const fs::path kPlanarCases = fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "mbench_planar";
+const fs::path kPlanarCases = fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "mbench_planar";
 
 json Reference(const std::string& name) {
   return json::parse(std::ifstream(kPlanarCases / (name + ".contact.json")));
@@ -40,7 +40,7 @@ Case PlanarCase(const std::string& name, ReferencePosition position, ReferenceAn
 
 // The rail profile's raw points (y, z) of the SIMPACK file, in file order.
 std::vector<Eigen::Vector2d> RailPoints() {
-  std::ifstream in(fs::path(WRC_SHARED_DIR) / "profiles" / "MBench_UIC60_v3.prr");
+  std::ifstream in(fs::path(WRC_TEST_DATA_DIR) / "profiles" / "MBench_UIC60_v3.prr");
   std::vector<Eigen::Vector2d> points;
   for (std::string line; std::getline(in, line);) {
     std::istringstream fields(line);

@@ -1,4 +1,4 @@
-// Wheel–rail cases of ../shared/reference against CONTACT.
+// Wheel–rail cases of tests/data/reference against CONTACT.
 
 #include <gtest/gtest.h>
 
@@ -30,12 +30,12 @@ std::vector<fs::path> CasesIn(const fs::path& dir) {
 }
 
 std::vector<fs::path> Cases(const std::string& group) {
-  return CasesIn(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / group);
+  return CasesIn(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / group);
 }
 
 // Deep flange contact of the heavy-haul pair at heavy loads, kept apart from the case groups.
 std::vector<fs::path> DeepFlangeCases() {
-  return CasesIn(fs::path(WRC_SHARED_DIR) / "reference" / "deep_flange");
+  return CasesIn(fs::path(WRC_TEST_DATA_DIR) / "reference" / "deep_flange");
 }
 
 json Reference(const fs::path& toml) {

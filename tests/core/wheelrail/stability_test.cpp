@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 Case Manchester(ReferenceSurface reference) {
-  Case c = LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "mbench_planar" /
+  Case c = LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "mbench_planar" /
                     "mbench_planar_y0.toml");
   c.method.reference = reference;
   c.grid.dx = c.grid.ds = 0.5;

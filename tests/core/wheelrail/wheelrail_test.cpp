@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 Case Manchester(double y, ReferenceSurface reference) {
-  Case c = LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "mbench_planar" /
+  Case c = LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" / "mbench_planar" /
                     "mbench_planar_y0.toml");
   c.state.y = y;
   c.method.reference = reference;
@@ -75,8 +75,8 @@ TEST(WheelRail, WheelSunkIntoTheRailIsBadInput) {
 TEST(WheelRail, WarnsWhereTheHalfSpaceIsStrained) {
   const WheelRailResult tread = SolveWheelRail(Manchester(0.0, ReferenceSurface::kCurved));
   EXPECT_TRUE(tread.warnings.empty());
-  const WheelRailResult groove = SolveWheelRail(
-      LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" / "groove" / "groove_r1025.toml"));
+  const WheelRailResult groove = SolveWheelRail(LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" /
+                                                         "cases" / "groove" / "groove_r1025.toml"));
   EXPECT_EQ(groove.status, SolverStatus::kConverged);
   // The groove's rail profile also carries a reading warning (its z orientation), prefixed
   // "profile: "; exactly one warning is about the half-space.
@@ -103,7 +103,7 @@ int CountContaining(const std::vector<std::string>& warnings, const std::string&
 // at the nominal position is within 1 mm of z = 0 and nothing is said about the placement.
 TEST(WheelRail, MisorientedRailIsRefusedAndTheOrientedOnePlacedNominally) {
   Case c = Manchester(0.0, ReferenceSurface::kCurved);
-  c.rail.path = fs::path(WRC_SHARED_DIR) / "profiles" / "avg_HR.BAN";
+  c.rail.path = fs::path(WRC_TEST_DATA_DIR) / "profiles" / "avg_HR.BAN";
   c.rail.spline.reset();
   c.rail.mirror_y = false;
   // The orientation check refuses it before the placement check could warn about z = -27 mm.
@@ -222,7 +222,7 @@ TEST(WheelRail, ForceLocationLeavesOnlyAParallelMoment) {
 // a two-patch flange contact with yaw on the heavy-haul pair.
 TEST(WheelRail, SolveBoxGivesTheSolutionOfTheWholeArea) {
   std::vector<Case> cases = {Manchester(6.0, ReferenceSurface::kCurved),
-                             LoadCase(fs::path(WRC_SHARED_DIR) / "reference" / "cases" /
+                             LoadCase(fs::path(WRC_TEST_DATA_DIR) / "reference" / "cases" /
                                       "heavy_haul" / "heavy_haul_z1.162.toml")};
   for (const Case& c : cases) {
     WheelRailOptions whole;
