@@ -51,6 +51,7 @@ double OutputValue(const std::string& name, const WheelRailResult& r) {
   if (name == "fz_ws") return r.force_W(2);
   if (name == "n_patches") return static_cast<double>(r.patches.size());
   if (name == "z") return r.z;
+  if (name == "t_gamma") return TGamma(r);
   if (name == "pmax") {
     double pmax = 0.0;
     for (const PatchResult& patch : r.patches) pmax = std::max(pmax, patch.pmax);

@@ -586,7 +586,7 @@ std::string_view SceneQuantityUnit(std::string_view name) {
       {"fx_ws", "N"},      {"fy_ws", "N"},
       {"fz_ws", "N"},      {"n_patches", "-"},
       {"contact_y", "mm"}, {"contact_angle", "rad"},
-      {"pmax", "N/mm^2"},
+      {"pmax", "N/mm^2"},  {"t_gamma", "N"},
   };
   for (const auto& [quantity, unit] : kUnits) {
     if (quantity == name) return unit;

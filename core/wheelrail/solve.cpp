@@ -641,4 +641,14 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   return result;
 }
 
+double TGamma(const PatchResult& patch) {
+  return -(patch.cksi * patch.fx + patch.ceta * patch.fs + patch.cphi * patch.mn);
+}
+
+double TGamma(const WheelRailResult& result) {
+  double sum = 0.0;
+  for (const PatchResult& patch : result.patches) sum += TGamma(patch);
+  return sum;
+}
+
 }  // namespace wrc

@@ -191,6 +191,7 @@ TEST_F(GenerateTest, StoredValuesEqualDirectSolves) {
     for (const PatchResult& patch : direct.patches) pmax = std::max(pmax, patch.pmax);
     EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "pmax")][point], pmax));
     EXPECT_TRUE(SameBits(stored.outputs[z_out][point], direct.z));
+    EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "t_gamma")][point], TGamma(direct)));
     EXPECT_TRUE(direct.has_force_location);
   }
 }

@@ -77,7 +77,8 @@ inline std::string DefaultTinyTable() {
          "yaw = [0.0, 0.004]\n"
          "y = {from = 0.0, to = 5.0, step = 1.0}\n"
          "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"fx_ws\", \"fy_ws\", "
-         "\"fz_ws\", \"n_patches\", \"contact_y\", \"contact_angle\", \"pmax\", \"z\"]";
+         "\"fz_ws\", \"n_patches\", \"contact_y\", \"contact_angle\", \"pmax\", \"z\", "
+         "\"t_gamma\"]";
 }
 
 using test_support::ReadFile;

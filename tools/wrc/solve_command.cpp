@@ -50,7 +50,7 @@ void PrintHuman(const json& j) {
     const json& f = j["rail_forces_track"];
     std::cout << "forces on the rail (track): fx " << Human(f["fx"]) << " N, fy " << Human(f["fy"])
               << " N, fz " << Human(f["fz"]) << " N\nwheelset z " << Human(j["wheelset"]["z"])
-              << " mm\n";
+              << " mm\nfrictional power Tgamma " << Human(j["t_gamma"]) << " N\n";
   }
   int n = 0;
   for (const json& p : j["patches"]) {
@@ -58,6 +58,7 @@ void PrintHuman(const json& j) {
               << " N, fs " << Human(p["fs"]) << " N, mn " << Human(p["mn"]) << " N.mm, pmax "
               << Human(p["pmax"]) << " N/mm2, contact " << p["n_contact"] << ", slip "
               << p["n_slip"];
+    if (p.contains("t_gamma")) std::cout << ", Tgamma " << Human(p["t_gamma"]) << " N";
     std::cout << "\n";
   }
   std::cout << "time " << Human(j["timing_s"]["total"]) << " s\n";
@@ -151,6 +152,7 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
          {"cksi", p.cksi},
          {"ceta", p.ceta},
          {"cphi", p.cphi},
+         {"t_gamma", TGamma(p)},
          {"iterations",
           {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
   }
@@ -160,6 +162,7 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
       {"wheelset", {{"y", r.y}, {"z", r.z}, {"roll", r.roll}, {"yaw", r.yaw}, {"omega", r.omega}}},
       {"rail_forces_track", forces},
       {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
+      {"t_gamma", TGamma(r)},
       {"patches", patches},
       {"force_location", r.has_force_location ? json{{"x_tr", r.force_location_T(0)},
                                                      {"y_tr", r.force_location_T(1)},

@@ -108,6 +108,15 @@ struct WheelRailResult {
   std::vector<std::string> warnings;
 };
 
+/// The frictional power of a patch per unit rolling distance, Tγ = −(ξ·fx + η·fs + φ·mn), N:
+/// the creepages at the patch's reference times its forces and spin moment on the rail (the
+/// minus because the rail's forces oppose the wheel's slip). The energy the patch dissipates
+/// per mm rolled, in N·mm/mm, as the Tγ wear models (Archard-type wear numbers, the RCF damage
+/// function) use it. 0 for a frictionless (normal only) solve.
+double TGamma(const PatchResult& patch);
+/// Tγ summed over the patches of a solve, N.
+double TGamma(const WheelRailResult& result);
+
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
 /// patches and solves them; with `state.fz` it finds the wheelset height z that gives that
 /// vertical force on the rail. Throws InputError for bad input (unreadable profiles, a pose
