@@ -12,6 +12,7 @@
 #include <string_view>
 #include <utility>
 
+#include "tools/dynamics/parameter_file.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 
@@ -22,8 +23,8 @@ using io::Section;
 using io::SourceFile;
 
 // Sections and keys of a parameter file; anything else is a misspelling.
-const std::vector<std::pair<std::string_view, std::vector<std::string_view>>>& Schema() {
-  static const std::vector<std::pair<std::string_view, std::vector<std::string_view>>> schema = {
+const ParameterSchema& Schema() {
+  static const ParameterSchema schema = {
       {"wheelset", {"mass", "yaw_inertia", "wheel_load"}},
       {"suspension",
        {"lateral_stiffness", "lateral_damping", "longitudinal_stiffness", "longitudinal_damping",
@@ -33,38 +34,8 @@ const std::vector<std::pair<std::string_view, std::vector<std::string_view>>>& S
   return schema;
 }
 
-void CheckNames(const toml::table& root, const SourceFile& file) {
-  std::vector<std::string_view> sections;
-  for (const auto& entry : Schema()) sections.push_back(entry.first);
-  for (const auto& [key, node] : root) {
-    const auto known = std::find_if(Schema().begin(), Schema().end(),
-                                    [&](const auto& s) { return s.first == key.str(); });
-    if (known == Schema().end()) {
-      const std::string suggestion = io::SuggestName(key.str(), sections);
-      file.Fail(&node, key.str(),
-                "unknown section" +
-                    (suggestion.empty() ? "" : " (did you mean [" + suggestion + "]?)") +
-                    "; allowed: [wheelset], [suspension], [simulation]");
-    }
-    if (!node.is_table()) file.Fail(&node, key.str(), "must be a section");
-    for (const auto& [inner, inner_node] : *node.as_table()) {
-      const auto& keys = known->second;
-      if (std::find(keys.begin(), keys.end(), inner.str()) != keys.end()) continue;
-      const std::string suggestion = io::SuggestName(inner.str(), keys);
-      file.Fail(&inner_node, std::string(key.str()) + "." + std::string(inner.str()),
-                "unknown key" + (suggestion.empty() ? "" : " (did you mean " + suggestion + "?)"));
-    }
-  }
-}
-
-// A number that must be positive (strictly) or, with allow_zero, not negative.
 double Checked(const Section& s, std::string_view key, bool allow_zero, double fallback = NAN) {
-  const double v =
-      std::isnan(fallback) ? s.RequiredNumber(key, "the model needs it") : s.Number(key, fallback);
-  if (v < 0.0 || (!allow_zero && v == 0.0)) {
-    s.Fail(key, allow_zero ? "must not be negative" : "must be positive");
-  }
-  return v;
+  return CheckedNumber(s, key, allow_zero, fallback);
 }
 
 }  // namespace
@@ -80,7 +51,7 @@ double Parameters::YawDamping() const {
 Parameters ParseParameters(const std::string& toml_text, const std::string& display_name) {
   const SourceFile file(display_name);
   const toml::table root = file.Parse(toml_text);
-  CheckNames(root, file);
+  CheckParameterNames(root, file, Schema());
   const Section ws(file, root, "wheelset"), su(file, root, "suspension"),
       sim(file, root, "simulation");
   Parameters p;
@@ -101,11 +72,7 @@ Parameters ParseParameters(const std::string& toml_text, const std::string& disp
 }
 
 Parameters LoadParameters(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot open the wheelset parameter file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseParameters(text.str(), path.string());
+  return ParseParameters(ReadParameterFile(path, "wheelset parameter"), path.string());
 }
 
 // m ÿ = F_y − k_y y − c_y ẏ, I ψ̈ = M_z − k_ψ ψ − c_ψ ψ̇, both axleboxes summed; the mass in kg
@@ -144,15 +111,11 @@ State Rk4Step(const Parameters& p, const ForceSource& forces, const State& s, do
   return Advance(next, k4, h / 6.0);
 }
 
-namespace {
-// CPU time of the calling thread: on a shared machine the wall time also counts the time the
-// thread waited for a core.
 double ThreadCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
-}  // namespace
 
 Trajectory Simulate(const Parameters& p, const ForceSource& forces, double velocity) {
   const auto start = std::chrono::steady_clock::now();

@@ -81,6 +81,10 @@ struct Trajectory {
   int steps = 0;
 };
 
+/// CPU time of the calling thread, s: on a shared machine the wall time also counts the time the
+/// thread waited for a core.
+double ThreadCpuSeconds();
+
 /// Integrates from the parameters' initial disturbance over their duration at `velocity`.
 Trajectory Simulate(const Parameters& p, const ForceSource& forces, double velocity);
 
