@@ -164,6 +164,10 @@ std::complex<double> DominantEigenvalue(const BogieMatrix& a) {
   return e(k);
 }
 
+double FrequencyOf(std::complex<double> eigenvalue) {
+  return std::fabs(eigenvalue.imag()) / (2.0 * M_PI);
+}
+
 double BogieCriticalSpeed(const BogieParameters& p, const LinearisedContact& contact, double v_low,
                           double v_high) {
   const auto growth = [&](double v) {

@@ -82,6 +82,9 @@ BogieMatrix BogieLinearSystem(const BogieParameters& p, const LinearisedContact&
 /// The eigenvalue of A with the largest real part (1/s; its imaginary part/2π is the frequency).
 std::complex<double> DominantEigenvalue(const BogieMatrix& a);
 
+/// The frequency of an eigenvalue's oscillation, |Im λ| / 2π, Hz.
+double FrequencyOf(std::complex<double> eigenvalue);
+
 /// The lowest speed in [v_low, v_high] (mm/s) where the dominant eigenvalue's real part crosses
 /// zero, bisected to 1e-6 of v_high after a scan in 1 % steps (the largest real part need not
 /// be monotonic in V); NaN when it stays negative throughout.

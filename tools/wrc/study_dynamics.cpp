@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "tools/dynamics/analysis.h"
+#include "tools/dynamics/bogie.h"
 #include "tools/dynamics/forces.h"
 #include "tools/dynamics/model.h"
 #include "tools/wrc/commands.h"
@@ -48,6 +49,7 @@ struct DynamicsOptions {
   bool linear_only = false;
   double linear_speed = 50.0;  // m/s, of the linearised contact
   double tolerance = 0.05;     // m/s, of the table's bisection
+  std::string vehicle;         // a vehicle file: the bogie's linear stability from both sources
 };
 
 // Extrema before this are the transient of the initial disturbance, not hunting.
@@ -120,6 +122,11 @@ class TableStudy {
   TableStudy(const DynamicsOptions& options, const fs::path& table_path, const fs::path& out)
       : options_(options), out_(out), table_(table_path.string()) {
     parameters_ = LoadModel(options.model);
+    if (!options.vehicle.empty()) {
+      // The contact is linearised at the vehicle's own wheel load.
+      vehicle_ = dynamics::LoadBogieParameters(options.vehicle);
+      parameters_.wheel_load = vehicle_->WheelLoad();
+    }
     stored_ = LoadStoredScene(table_path);
     geometry_ = dynamics::SceneGeometry(stored_->scene.base, parameters_.wheel_load);
     table_forces_ = std::make_unique<dynamics::TableForces>(table_, geometry_);
@@ -142,6 +149,8 @@ class TableStudy {
   void WriteSummary() const;
   void Linearise();
   void WriteLinearSummary(std::ostream& md) const;
+  void AnalyseVehicle();
+  void WriteVehicleSummary(std::ostream& md) const;
 
   const DynamicsOptions& options_;
   fs::path out_;
@@ -169,6 +178,14 @@ class TableStudy {
     Eigen::Matrix<double, 2, 4> d;
   };
   std::vector<Linearisation> linear_;
+  // The vehicle's bogie on each source's linearised contact at y = 0.
+  std::optional<dynamics::BogieParameters> vehicle_;
+  struct VehicleStability {
+    std::string source;
+    double critical = NAN;                       // m/s
+    std::vector<double> speeds, hertz, damping;  // m/s, Hz, 1/s of the dominant eigenvalue
+  };
+  std::vector<VehicleStability> vehicle_stability_;
   double solver_roll_seconds_ = 0.0;
   long solver_roll_solves_ = 0;
   std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
@@ -397,6 +414,63 @@ void TableStudy::WriteLinearSummary(std::ostream& md) const {
   md << "\n";
 }
 
+// The bogie's linear critical speed on each source's contact linearised at y = 0, and the
+// hunting frequency and decay at 60 % and 80 % of the solver's critical speed (both sources at
+// the same speeds, so that the frequencies compare like for like).
+void TableStudy::AnalyseVehicle() {
+  constexpr double kLowest = 1000.0, kHighest = 300000.0;  // mm/s: 1 to 300 m/s
+  const double v0 = 1000.0 * options_.linear_speed;
+  for (const Linearisation& l : linear_) {
+    if (l.y != 0.0) continue;
+    dynamics::LinearisedContact contact;
+    contact.jacobian = l.d;
+    contact.speed = v0;
+    VehicleStability s;
+    s.source = l.source;
+    s.critical = 1e-3 * dynamics::BogieCriticalSpeed(*vehicle_, contact, kLowest, kHighest);
+    vehicle_stability_.push_back(s);
+  }
+  const double reference = vehicle_stability_.back().critical;  // the solver's
+  std::ofstream csv(out_ / "vehicle.csv");
+  csv << "source,critical_speed_m_s,speed_m_s,frequency_hz,real_part_1_s\n";
+  csv.precision(8);
+  for (VehicleStability& s : vehicle_stability_) {
+    dynamics::LinearisedContact contact;
+    contact.jacobian = (s.source == "table" ? linear_[0] : linear_[1]).d;
+    contact.speed = v0;
+    for (const double fraction : {0.6, 0.8}) {
+      const double v = fraction * reference;
+      const std::complex<double> lambda =
+          dynamics::DominantEigenvalue(dynamics::BogieLinearSystem(*vehicle_, contact, 1000.0 * v));
+      s.speeds.push_back(v);
+      s.hertz.push_back(dynamics::FrequencyOf(lambda));
+      s.damping.push_back(lambda.real());
+      csv << s.source << ',' << s.critical << ',' << v << ',' << s.hertz.back() << ','
+          << s.damping.back() << '\n';
+    }
+  }
+}
+
+void TableStudy::WriteVehicleSummary(std::ostream& md) const {
+  if (vehicle_stability_.size() != 2) return;
+  const VehicleStability &t = vehicle_stability_[0], &s = vehicle_stability_[1];
+  md << "## The vehicle's bogie, linear stability\n\nThe bogie of `" << options_.vehicle
+     << "` (wheel load " << Fixed(vehicle_->WheelLoad(), 0)
+     << " N) on the contact of each source linearised at y = 0 (the table above): the speed "
+        "where the dominant eigenvalue's real part crosses zero, and that eigenvalue below it "
+        "(vehicle.csv).\n\n| | table | solver | table / solver |\n|---|---|---|---|\n"
+     << "| linear critical speed, m/s | " << Fixed(t.critical, 2) << " | " << Fixed(s.critical, 2)
+     << " | " << Fixed(t.critical / s.critical, 4) << " |\n";
+  for (std::size_t k = 0; k < t.speeds.size(); ++k) {
+    md << "| hunting frequency at " << Fixed(t.speeds[k], 1) << " m/s, Hz | "
+       << Fixed(t.hertz[k], 3) << " | " << Fixed(s.hertz[k], 3) << " | "
+       << Fixed(t.hertz[k] / s.hertz[k], 4) << " |\n"
+       << "| real part there, 1/s | " << Fixed(t.damping[k], 3) << " | " << Fixed(s.damping[k], 3)
+       << " | |\n";
+  }
+  md << "\n";
+}
+
 void TableStudy::WriteSpeedsCsv() const {
   std::ofstream csv(out_ / "speeds.csv");
   csv << "source,speed_m_s,frequency_hz,growth_rate_1_s,max_abs_y_mm,flags,seconds,steps\n";
@@ -440,6 +514,13 @@ void TableStudy::WriteHuntingPlot() const {
 void TableStudy::WriteSummary() const {
   std::ofstream md(out_ / "README.md");
   const Parameters& p = parameters_;
+  if (vehicle_) {
+    md << "# The vehicle's bogie on " << table_name_ << "\n\nGenerated by `wrc study dynamics "
+       << table_name_ << " --vehicle " << options_.vehicle << "`.\n\n";
+    WriteLinearSummary(md);
+    WriteVehicleSummary(md);
+    return;
+  }
   md << "# Wheelset dynamics on " << table_name_ << "\n\n"
      << "Generated by `wrc study dynamics " << table_name_
      << (options_.model.empty() ? std::string() : " --model " + options_.model) << "`. Wheelset "
@@ -508,7 +589,8 @@ void TableStudy::WriteSummary() const {
 int TableStudy::Run() {
   fs::create_directories(out_);
   if (!options_.no_solver) Linearise();
-  if (!options_.linear_only) {
+  if (vehicle_ && !linear_.empty()) AnalyseVehicle();
+  if (!options_.linear_only && !vehicle_) {
     SweepTable();
     BisectTable();
     if (!options_.no_solver) RunSolver();
@@ -516,7 +598,12 @@ int TableStudy::Run() {
     WriteHuntingPlot();
   }
   WriteSummary();
-  if (options_.linear_only) {
+  if (vehicle_stability_.size() == 2) {
+    std::cerr << "wrc study dynamics: the vehicle's linear critical speed "
+              << Fixed(vehicle_stability_[0].critical, 2) << " m/s (table), "
+              << Fixed(vehicle_stability_[1].critical, 2) << " m/s (solver); wrote "
+              << (out_ / "README.md").string() << "\n";
+  } else if (options_.linear_only || vehicle_) {
     std::cerr << "wrc study dynamics: linearised contact at " << linear_.size() / 2
               << " positions; wrote " << (out_ / "README.md").string() << "\n";
   } else {
@@ -569,6 +656,11 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
   cmd->add_option("--linear-speed", options->linear_speed, "Speed of the linearised contact, m/s")
       ->check(GreaterThanZero())
       ->capture_default_str();
+  cmd->add_option("--vehicle", options->vehicle,
+                  "Vehicle file (TOML, e.g. the shipped tables/manchester_vehicle.toml): the "
+                  "bogie's linear critical speed and hunting frequency on each source's "
+                  "linearised contact, at the vehicle's wheel load (no wheelset runs)")
+      ->check(CLI::ExistingFile);
   cmd->callback([options, exit_code]() {
     try {
       *exit_code = RunDynamicsStudy(*options);
