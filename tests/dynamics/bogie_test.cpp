@@ -26,20 +26,26 @@ BogieParameters Vehicle() {
 }
 
 // Linear creep at the vehicle's wheel load (Kalker-size coefficients of a 54.5 kN contact),
-// conicity of a new S1002 profile, as its Jacobian at 30 m/s.
-LinearisedContact TestContact() {
+// conicity of a new S1002 profile.
+LinearContact TestCreep() {
   LinearContact c;
   c.f11 = 8.0e6;
   c.f22 = 7.2e6;
   c.conicity = 0.2;
   c.semi_spacing = 750.0;
   c.nominal_radius = 460.0;
+  return c;
+}
+
+// That contact as its Jacobian at `speed` (mm/s).
+LinearisedContact Linearised(const LinearContact& c, double speed) {
   LinearisedContact linear;
-  linear.speed = 30000.0;
-  linear.jacobian =
-      LinearisedLoads(c, State{}, linear.speed, Eigen::Vector4d(0.1, 1e-4, 1.0, 1e-3));
+  linear.speed = speed;
+  linear.jacobian = LinearisedLoads(c, State{}, speed, Eigen::Vector4d(0.1, 1e-4, 1.0, 1e-3));
   return linear;
 }
+
+LinearisedContact TestContact() { return Linearised(TestCreep(), 30000.0); }
 
 // x(t) = e^{At} x0, by Eigen's matrix exponential (scaling and squaring with Padé
 // approximants): the eigenvectors of A are too ill-conditioned to serve at 1e-9.
@@ -120,14 +126,8 @@ TEST(BogieDynamics, AFrameHeldStillLeavesTwoSingleWheelsets) {
   single.lateral_stiffness = p.primary_lateral_stiffness;
   single.longitudinal_stiffness = p.primary_longitudinal_stiffness;
   single.spring_semi_spacing = p.primary_semi_spacing;
-  LinearContact c;
-  c.f11 = 8.0e6;
-  c.f22 = 7.2e6;
-  c.conicity = 0.2;
-  LinearisedContact linear;
-  linear.speed = 50000.0;
-  linear.jacobian =
-      LinearisedLoads(c, State{}, linear.speed, Eigen::Vector4d(0.1, 1e-4, 1.0, 1e-3));
+  const LinearContact c = TestCreep();
+  const LinearisedContact linear = Linearised(c, 50000.0);
   for (double v : {20000.0, 80000.0}) {
     const Eigen::Matrix<std::complex<double>, 12, 1> bogie =
         Eigen::EigenSolver<BogieMatrix>(BogieLinearSystem(p, linear, v), false).eigenvalues();

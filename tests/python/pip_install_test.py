@@ -12,19 +12,9 @@ import subprocess
 import sys
 import tempfile
 
-
-def copy_project(source, target):
-    listed = subprocess.run(
-        ["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
-        capture_output=True,
-    )
-    if listed.returncode == 0 and listed.stdout:
-        for name in listed.stdout.decode().split("\0"):
-            if name and os.path.isfile(os.path.join(source, name)):
-                os.makedirs(os.path.dirname(os.path.join(target, name)), exist_ok=True)
-                shutil.copy2(os.path.join(source, name), os.path.join(target, name))
-    else:
-        shutil.copytree(source, target, ignore=shutil.ignore_patterns("build*", ".git"))
+# The files of a user's copy, as the documented-commands test makes it.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs"))
+from documented_commands import copy_project  # noqa: E402
 
 
 def run(command, cwd):

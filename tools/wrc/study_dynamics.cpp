@@ -182,6 +182,7 @@ class TableStudy {
   std::optional<dynamics::BogieParameters> vehicle_;
   struct VehicleStability {
     std::string source;
+    dynamics::LinearisedContact contact;         // at y = 0
     double critical = NAN;                       // m/s
     std::vector<double> speeds, hertz, damping;  // m/s, Hz, 1/s of the dominant eigenvalue
   };
@@ -427,6 +428,7 @@ void TableStudy::AnalyseVehicle() {
     contact.speed = v0;
     VehicleStability s;
     s.source = l.source;
+    s.contact = contact;
     s.critical = 1e-3 * dynamics::BogieCriticalSpeed(*vehicle_, contact, kLowest, kHighest);
     vehicle_stability_.push_back(s);
   }
@@ -435,13 +437,10 @@ void TableStudy::AnalyseVehicle() {
   csv << "source,critical_speed_m_s,speed_m_s,frequency_hz,real_part_1_s\n";
   csv.precision(8);
   for (VehicleStability& s : vehicle_stability_) {
-    dynamics::LinearisedContact contact;
-    contact.jacobian = (s.source == "table" ? linear_[0] : linear_[1]).d;
-    contact.speed = v0;
     for (const double fraction : {0.6, 0.8}) {
       const double v = fraction * reference;
-      const std::complex<double> lambda =
-          dynamics::DominantEigenvalue(dynamics::BogieLinearSystem(*vehicle_, contact, 1000.0 * v));
+      const std::complex<double> lambda = dynamics::DominantEigenvalue(
+          dynamics::BogieLinearSystem(*vehicle_, s.contact, 1000.0 * v));
       s.speeds.push_back(v);
       s.hertz.push_back(dynamics::FrequencyOf(lambda));
       s.damping.push_back(lambda.real());
