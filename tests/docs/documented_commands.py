@@ -13,7 +13,8 @@ the build's `wrc` first in PATH, and each must exit with 0. What runs:
 
 Placeholders run on small stand-ins, and long jobs on a small equivalent (listed in
 STAND_INS): a 40-minute table on the 27-point demo scene, 1000 verify samples on 6, an
-error map of 31 × 31 solves on 5 × 5.
+error map of 31 × 31 solves on 5 × 5, a dynamics study's linearised contact in place of its
+minutes of solver-driven runs (those are checked in tests/dynamics).
 
 usage: documented_commands.py SOURCE_DIR BUILD_DIR [PYTHON]
 
@@ -38,6 +39,7 @@ STAND_INS = [
     (r"--samples [0-9]{3,}", "--samples 6"),
     (r"\by_wheel\b", "y"),  # the demo scene's lateral axis
     (r"(--map \S+)", r"\1 --map-size 5"),  # 25 exact solves instead of 961
+    (r"(\bstudy dynamics \S+)", r"\1 --linear-only"),  # 10 min of full solves -> seconds
     (r"(?<![\w/.])SCENE\.toml\b", "tables/demo.toml"),
     (r"(?<![\w/.])CASE(\.toml)?\b", "tables/mbench_case.toml"),
     (r"(?<![\w/.])TABLE\.h5\b", "demo-table.h5"),
