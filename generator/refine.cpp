@@ -455,6 +455,7 @@ double NormalisedError(const ErrorModel& model, double load, const std::vector<d
 struct IntervalScore {
   double max_error = 0.0;       ///< In units of the target.
   double sum_of_squares = 0.0;  ///< Of the sampled errors, in units of the target.
+  double slope_error = 0.0;     ///< Of the slope target, when the interval is one it reads.
   int samples = 0;
   double MeanSquare() const { return samples > 0 ? sum_of_squares / samples : 0.0; }
   void Add(double error) {
@@ -525,10 +526,15 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
     const std::vector<double>& v = axes[a].values;
     const double range = v.back() - v.front();
     for (std::size_t j = 0; j < scores[a].size(); ++j) {
-      if (scores[a][j].max_error <= 1.0) continue;
+      const IntervalScore& score = scores[a][j];
+      if (score.slope_error > 1.0) {
+        // A missed slope target is mended only here, and costs one node: first.
+        candidates.push_back({a, j, std::numeric_limits<double>::infinity()});
+        continue;
+      }
+      if (score.max_error <= 1.0) continue;
       const double width = (v[j + 1] - v[j]) / range;
-      candidates.push_back(
-          {a, j, scores[a][j].MeanSquare() * width * static_cast<double>(v.size())});
+      candidates.push_back({a, j, score.MeanSquare() * width * static_cast<double>(v.size())});
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
@@ -566,6 +572,37 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
     next[a].values = std::move(values);
   }
   return next;
+}
+
+// ---- slope target ---------------------------------------------------------------------------
+
+// The interval of `v` holding x strictly inside, or none when x is a node (the interpolant is
+// exact there, whatever the interval).
+std::optional<std::size_t> IntervalInside(const std::vector<double>& v, double x) {
+  const auto upper = std::upper_bound(v.begin(), v.end(), x);
+  if (upper == v.begin() || upper == v.end() || *(upper - 1) == x) return std::nullopt;
+  return static_cast<std::size_t>(upper - v.begin()) - 1;
+}
+
+// Marks the intervals a missed slope reads (those holding the state ± step) for splitting.
+// Returns the number of missed slopes with no interval left to split (min_step).
+std::size_t ScoreSlopes(const Axes& axes, const RefineSettings& settings,
+                        const std::vector<double>& slope_errors,
+                        std::vector<std::vector<IntervalScore>>* scores) {
+  const RefineSettings::Slope& slope = *settings.slope;
+  std::size_t stuck = 0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    if (!(slope_errors[a] > 1.0)) continue;
+    bool marked = false;
+    for (const double x : {slope.at[a] - slope.step[a], slope.at[a] + slope.step[a]}) {
+      const std::optional<std::size_t> j = IntervalInside(axes[a].values, x);
+      if (!j || !Splittable(settings, axes[a], *j)) continue;
+      (*scores)[a][*j].slope_error = slope_errors[a];
+      marked = true;
+    }
+    stuck += marked ? 0 : 1;
+  }
+  return stuck;
 }
 
 // ---- final estimate -------------------------------------------------------------------------
@@ -744,6 +781,8 @@ class Refinement {
   std::vector<Axes> StartOrResume();
   GenerateSummary RunPass(int pass, const Axes& axes, const KnownPoints* known, TableData* data);
   std::optional<SampleRun> RunSamples(int pass, const std::vector<RefineSample>& samples);
+  bool SolveProbes();
+  void SaySlopes(const std::vector<double>& errors) const;
   ErrorEstimate FinalCheck(const Axes& axes, const TableData& data);
   GenerateSummary WriteFinal(const Axes& axes, const TableData& data, const ErrorEstimate& check,
                              const std::string& stop_reason);
@@ -769,6 +808,7 @@ class Refinement {
   ErrorModel model_;
   std::size_t computed_ = 0;
   std::vector<PassRecord> records_;
+  std::vector<PointResult> probes_;  ///< Exact solves at SlopeProbes(), with a slope target.
 };
 
 void Refinement::Say(const char* format, ...) const {
@@ -838,6 +878,32 @@ std::optional<SampleRun> Refinement::RunSamples(int pass,
   return run;
 }
 
+void Refinement::SaySlopes(const std::vector<double>& errors) const {
+  std::string text;
+  for (std::size_t a = 0; a < errors.size(); ++a) {
+    if (settings_.slope->step[a] == 0.0) continue;
+    char item[96];
+    std::snprintf(item, sizeof item, "%s%s %.3g", text.empty() ? "" : ", ",
+                  scene_.axes[a].name.c_str(), errors[a]);
+    text += item;
+  }
+  if (!text.empty()) Say("slope errors at the slope state (× target): %s", text.c_str());
+}
+
+// The slope target's exact solves: the same every pass, so solved once (journaled).
+bool Refinement::SolveProbes() {
+  if (!settings_.slope) return true;
+  const std::vector<std::vector<double>> points = SlopeProbes(*settings_.slope);
+  const std::vector<double> z_guess(points.size(), kNaN);
+  StopControl stop(options_.cancel, 0, options_.handle_signals);
+  SampleRun run = SolvePoints(scene_, points, z_guess, work_ / "slope.journal", identity_ + "slope",
+                              ThreadsFor(options_, cluster_), stop, ProgressMode::kOff);
+  computed_ += run.computed;
+  if (!run.complete) return false;
+  probes_ = std::move(run.results);
+  return true;
+}
+
 ErrorEstimate Refinement::FinalCheck(const Axes& axes, const TableData& data) {
   SplitMix rng(Mix(settings_.seed, 0xC0FFEEull));
   std::vector<std::vector<double>> points(kCheckPoints);
@@ -876,6 +942,11 @@ std::string TargetDescription(const RefineSettings& settings) {
                            {"seed", settings.seed}};
   for (const auto& [name, value] : settings.absolute) target["absolute"][name] = value;
   for (const auto& [name, value] : settings.min_step) target["min_step"][name] = value;
+  if (settings.slope) {
+    target["slope"] = {{"fraction", settings.slope->fraction},
+                       {"at", settings.slope->at},
+                       {"step", settings.slope->step}};
+  }
   return target.dump();
 }
 
@@ -889,11 +960,20 @@ GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
                       {"intervals_above_target", r.above_target},
                       {"worst_midpoint_error", r.worst}});
   }
-  const nlohmann::json estimate = {{"points", check.compared},
-                                   {"p50", check.p50},
-                                   {"p95", check.p95},
-                                   {"max", check.max},
-                                   {"unit", "target"}};
+  nlohmann::json estimate = {{"points", check.compared},
+                             {"p50", check.p50},
+                             {"p95", check.p95},
+                             {"max", check.max},
+                             {"unit", "target"}};
+  if (settings_.slope) {
+    // The slope errors at the slope state, per axis (null: not a target, or unsolved).
+    const std::vector<double> errors = SlopeErrors(scene_, axes, data, probes_);
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (settings_.slope->step[a] == 0.0) continue;
+      estimate["slope"][axes[a].name] =
+          std::isfinite(errors[a]) ? nlohmann::json(errors[a]) : nlohmann::json();
+    }
+  }
   GridHooks hooks;
   const KnownPoints everything(axes, data, axes, {}, {});
   hooks.known = [&everything](std::uint64_t point, PointResult* result) {
@@ -927,6 +1007,7 @@ GenerateSummary Refinement::RunRoot() {
     throw;
   }
   int pass = static_cast<int>(passes.size()) - 1;
+  if (!SolveProbes()) return Interrupted({});
   std::optional<KnownPoints> known;
   // The previous pass's journal is removed once this pass's decision is written; a resume
   // that finds the decision but also the old journal (a stop in between) just removes it.
@@ -966,7 +1047,8 @@ GenerateSummary Refinement::RunRoot() {
       sample_run = RunSamples(pass, samples);
       if (!sample_run) return Interrupted(grid);
       const RefineDecision decision =
-          DecideRefinement(scene_, axes, data, samples, sample_run->results);
+          DecideRefinement(scene_, axes, data, samples, sample_run->results, probes_);
+      SaySlopes(decision.slope_errors);
       record.worst = decision.worst;
       record.above_target = decision.above_target;
       next = decision.next;
@@ -1068,16 +1150,74 @@ double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& da
   return sum;
 }
 
+std::vector<std::vector<double>> SlopeProbes(const RefineSettings::Slope& slope) {
+  std::vector<std::vector<double>> points;
+  for (std::size_t a = 0; a < slope.at.size(); ++a) {
+    if (slope.step[a] == 0.0) continue;
+    for (const double sign : {-1.0, 1.0}) {
+      points.push_back(slope.at);
+      points.back()[a] += sign * slope.step[a];
+    }
+  }
+  return points;
+}
+
+std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                const TableData& data, const std::vector<PointResult>& probes) {
+  const RefineSettings::Slope& slope = *scene.refine->slope;
+  const ErrorModel model = MakeErrorModel(scene, *scene.refine);
+  std::vector<double> errors(axes.size(), 0.0);
+  std::size_t probe = 0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    if (slope.step[a] == 0.0) continue;
+    const PointResult& minus = probes[probe++];
+    const PointResult& plus = probes[probe++];
+    if (!Usable(minus.status) || !Usable(plus.status)) {
+      errors[a] = kNaN;
+      continue;
+    }
+    std::vector<double> below = slope.at, above = slope.at;
+    below[a] -= slope.step[a];
+    above[a] += slope.step[a];
+    const double load = LocalLoad(model, slope.at, {&minus.values, &plus.values});
+    const double range = axes[a].values.back() - axes[a].values.front();
+    for (std::size_t i = 0; i < model.outputs.size(); ++i) {
+      const std::size_t k = model.outputs[i];
+      const double exact = (plus.values[k] - minus.values[k]) / (2.0 * slope.step[a]);
+      const double table =
+          (InterpolateLinear(axes, data, k, above) - InterpolateLinear(axes, data, k, below)) /
+          (2.0 * slope.step[a]);
+      // Relative to the solver's slope; a slope that moves the output by less than its
+      // pointwise target across the whole range is as good as flat.
+      const double value_tolerance =
+          std::isnan(model.absolute[i]) ? model.load_fraction * load : model.absolute[i];
+      const double scale = std::max(std::fabs(exact), value_tolerance / range);
+      if (!std::isfinite(exact) || !std::isfinite(table) || !(scale > 0.0)) continue;
+      errors[a] = std::max(errors[a], std::fabs(table - exact) / (slope.fraction * scale));
+    }
+  }
+  return errors;
+}
+
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
-                                const std::vector<PointResult>& results) {
+                                const std::vector<PointResult>& results,
+                                const std::vector<PointResult>& probes) {
   const RefineSettings& settings = *scene.refine;
-  const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
+  auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
   RefineDecision decision;
+  if (settings.slope) {
+    decision.slope_errors = SlopeErrors(scene, axes, data, probes);
+    decision.above_target += ScoreSlopes(axes, settings, decision.slope_errors, &scores);
+    for (const double e : decision.slope_errors) {
+      if (e > decision.worst) decision.worst = e;
+    }
+  }
   for (const auto& axis_scores : scores) {
     for (const IntervalScore& s : axis_scores) {
-      decision.worst = std::max(decision.worst, s.max_error);
-      decision.above_target += s.max_error > 1.0 ? 1 : 0;
+      const double error = std::max(s.max_error, s.slope_error);
+      decision.worst = std::max(decision.worst, error);
+      decision.above_target += error > 1.0 ? 1 : 0;
     }
   }
   decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);

@@ -65,16 +65,31 @@ struct RefineSample {
 std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
                                             const RefineSettings& settings, int pass);
 
+/// The states whose exact solves give the solver's slopes for `[table.refine.slope]`: for each
+/// targeted axis in dimension order, the slope state minus and plus its step.
+std::vector<std::vector<double>> SlopeProbes(const RefineSettings::Slope& slope);
+
+/// The table's slope error per axis at the slope state: the central difference of the
+/// multilinear interpolant against that of the exact `probes` (SlopeProbes order), worst over
+/// the refined outputs, in units of the slope target. 0 for untargeted axes, NaN where a probe
+/// did not solve.
+std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                const TableData& data, const std::vector<PointResult>& probes);
+
 /// What one pass decides from its grid and its samples' exact results.
 struct RefineDecision {
-  std::vector<SceneAxis> next;   ///< The axes of the next pass (equal: stop).
-  std::size_t above_target = 0;  ///< Intervals whose sampled midpoint error exceeds the target.
-  std::size_t refused = 0;       ///< Of those, intervals left unsplit by the point budget.
-  double worst = 0.0;            ///< Largest sampled midpoint error, in units of the target.
+  std::vector<SceneAxis> next;       ///< The axes of the next pass (equal: stop).
+  std::size_t above_target = 0;      ///< Intervals whose sampled midpoint error exceeds the target.
+  std::size_t refused = 0;           ///< Of those, intervals left unsplit by the point budget.
+  double worst = 0.0;                ///< Largest sampled midpoint error, in units of the target.
+  std::vector<double> slope_errors;  ///< SlopeErrors() of this grid (empty without a target).
 };
+/// `probes`: the exact solves at SlopeProbes() when the scene has a slope target. An axis whose
+/// slope misses it has the intervals that its central difference reads split first.
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
-                                const std::vector<PointResult>& results);
+                                const std::vector<PointResult>& results,
+                                const std::vector<PointResult>& probes = {});
 
 /// Multilinear interpolation of output `k` of a finished grid at `point` (inside the axes'
 /// ranges; clamped otherwise). NaN when a corner with non-zero weight is NaN.

@@ -331,18 +331,99 @@ std::map<std::string, double, std::less<>> ReadPositiveByName(
   return values;
 }
 
-const std::vector<std::string_view> kRefineKeys = {
-    "target", "absolute", "outputs", "max_points", "max_passes", "samples", "seed", "min_step"};
+const std::vector<std::string_view> kRefineKeys = {"target",     "absolute",   "outputs",
+                                                   "max_points", "max_passes", "samples",
+                                                   "seed",       "min_step",   "slope"};
+const std::vector<std::string_view> kSlopeKeys = {"target", "at", "step", "axes"};
+
+void RejectUnknownKeys(const Section& section, const std::vector<std::string_view>& allowed) {
+  for (const auto& [key, node] : *section.table()) {
+    if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+    std::string problem = "unknown key";
+    const std::string suggestion = SuggestName(key.str(), allowed);
+    if (!suggestion.empty()) problem += " (did you mean " + section.Path(suggestion) + "?)";
+    section.Fail(key.str(), problem + "; allowed: " + QuotedList(allowed));
+  }
+}
+
+/// `{name = number, ...}` with names from `allowed`, each number finite.
+std::map<std::string, double, std::less<>> ReadNumbersByName(
+    const Section& section, std::string_view key, const std::vector<std::string_view>& allowed) {
+  const Section sub(section, key);
+  std::map<std::string, double, std::less<>> values;
+  if (!sub.exists()) return values;
+  for (const auto& [name, node] : *sub.table()) {
+    if (std::find(allowed.begin(), allowed.end(), name.str()) == allowed.end()) {
+      sub.Fail(name.str(), "not an axis of this scene; allowed: " + QuotedList(allowed));
+    }
+    values[std::string(name.str())] = ReadNumber(section.file(), node, sub.Path(name.str()));
+  }
+  return values;
+}
+
+// A central difference over 1/80 of the range: an amplitude small against the range (the
+// slope at the state, not a secant across the table) yet wide against the solver's own
+// convergence noise (its tolerances are 1e-6 of the load, so slopes over steps down to 1e-4
+// of the range stay within 1 % of the load's slope scale).
+constexpr double kDefaultSlopeStepFraction = 1.0 / 80.0;
+
+/// `[table.refine.slope]`: the state (every axis at 0 unless given in `at`, and a node there),
+/// the steps, and which axes' slopes are targets (all but fz unless `axes` lists them).
+RefineSettings::Slope ReadSlopeTarget(const Section& slope, const Scene& scene) {
+  RejectUnknownKeys(slope, kSlopeKeys);
+  RefineSettings::Slope target;
+  target.fraction = slope.Number("target", target.fraction);
+  if (!(target.fraction >= 1e-4 && target.fraction < 1.0)) {
+    slope.Fail("target", "must be a fraction of the slope between 1e-4 and 1");
+  }
+  std::vector<std::string_view> names;
+  for (const SceneAxis& axis : scene.axes) names.push_back(axis.name);
+  const auto at = ReadNumbersByName(slope, "at", names);
+  const auto steps = ReadPositiveByName(slope, "step", names, "an axis");
+  std::vector<std::string> targeted;
+  if (const toml::node* list = slope.Find("axes")) {
+    const toml::array* array = list->as_array();
+    if (array == nullptr || array->empty()) slope.Fail("axes", "must list axis names");
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const auto* text = array->get(i)->as_string();
+      if (text == nullptr || std::find(names.begin(), names.end(), text->get()) == names.end()) {
+        slope.file().Fail(array->get(i), slope.Path("axes") + "[" + std::to_string(i) + "]",
+                          "must be an axis name; allowed: " + QuotedList(names));
+      }
+      targeted.push_back(text->get());
+    }
+  } else {
+    for (const SceneAxis& axis : scene.axes) {
+      if (axis.name != "fz") targeted.push_back(axis.name);
+    }
+  }
+  for (const SceneAxis& axis : scene.axes) {
+    const std::vector<double>& v = axis.values;
+    const auto given = at.find(axis.name);
+    const double x = given != at.end() ? given->second : 0.0;
+    if (std::find(v.begin(), v.end(), x) == v.end()) {
+      slope.Fail("at", "the state must be a node of every axis: " + axis.name + " = " +
+                           FormatNumber(x) + " is not among table." + axis.name +
+                           "'s starting values (give its value in " + slope.Path("at") + ")");
+    }
+    target.at.push_back(x);
+    double h = 0.0;
+    if (std::find(targeted.begin(), targeted.end(), axis.name) != targeted.end()) {
+      const auto s = steps.find(axis.name);
+      h = s != steps.end() ? s->second : (v.back() - v.front()) * kDefaultSlopeStepFraction;
+      if (!(x - h >= v.front() && x + h <= v.back())) {
+        slope.Fail("step", axis.name + " ± " + FormatNumber(h) + " around " + FormatNumber(x) +
+                               " leaves the axis range");
+      }
+    }
+    target.step.push_back(h);
+  }
+  return target;
+}
 
 /// `[table.refine]`, checked against the scene's axes and outputs.
 RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
-  for (const auto& [key, node] : *refine.table()) {
-    if (std::find(kRefineKeys.begin(), kRefineKeys.end(), key.str()) != kRefineKeys.end()) continue;
-    std::string problem = "unknown key";
-    const std::string suggestion = SuggestName(key.str(), kRefineKeys);
-    if (!suggestion.empty()) problem += " (did you mean " + refine.Path(suggestion) + "?)";
-    refine.Fail(key.str(), problem + "; allowed: " + QuotedList(kRefineKeys));
-  }
+  RejectUnknownKeys(refine, kRefineKeys);
   RefineSettings settings;
   settings.load_fraction = refine.Number("target", settings.load_fraction);
   // Below 1e-6 of the load the solver's own tolerances (1e-6 on fz) decide, not the table.
@@ -407,6 +488,8 @@ RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
   std::vector<std::string_view> axis_names;
   for (const SceneAxis& axis : scene.axes) axis_names.push_back(axis.name);
   settings.min_step = ReadPositiveByName(refine, "min_step", axis_names, "an axis");
+  const Section slope(refine, "slope");
+  if (slope.exists()) settings.slope = ReadSlopeTarget(slope, scene);
   return settings;
 }
 

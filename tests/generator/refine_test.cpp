@@ -37,18 +37,54 @@ Scene SyntheticScene(const fs::path& dir) {
   return ParseScene(TinyScene(table), dir, "synthetic.toml");
 }
 
-gen::TableData Fill(const std::vector<SceneAxis>& axes) {
+using Function = std::vector<double> (*)(const std::vector<double>&);
+
+PointResult Exact(Function f, const std::vector<double>& point) {
+  PointResult r;
+  r.status = PointStatus::kOk;
+  r.values = f(point);
+  return r;
+}
+
+gen::TableData Fill(const std::vector<SceneAxis>& axes, Function f = Synthetic) {
   const std::size_t ny = axes[0].values.size(), nyaw = axes[1].values.size();
   gen::TableData data(ny * nyaw, 3);
   for (std::size_t i = 0; i < ny; ++i) {
     for (std::size_t j = 0; j < nyaw; ++j) {
-      PointResult r;
-      r.status = PointStatus::kOk;
-      r.values = Synthetic({axes[0].values[i], axes[1].values[j]});
-      data.Store(i * nyaw + j, r);
+      data.Store(i * nyaw + j, Exact(f, {axes[0].values[i], axes[1].values[j]}));
     }
   }
   return data;
+}
+
+std::vector<PointResult> Probes(const Scene& scene, Function f) {
+  std::vector<PointResult> probes;
+  if (!scene.refine->slope) return probes;
+  for (const auto& point : gen::SlopeProbes(*scene.refine->slope)) {
+    probes.push_back(Exact(f, point));
+  }
+  return probes;
+}
+
+// The refinement's passes on a function in place of the solver, until a pass adds no node.
+std::vector<SceneAxis> RefineOn(const Scene& scene, Function f) {
+  std::vector<SceneAxis> axes = scene.axes;
+  const std::vector<PointResult> probes = Probes(scene, f);
+  for (int pass = 0; pass < 40; ++pass) {
+    const gen::TableData data = Fill(axes, f);
+    const std::vector<gen::RefineSample> samples =
+        gen::DrawRefineSamples(axes, *scene.refine, pass);
+    std::vector<PointResult> results;
+    for (const gen::RefineSample& s : samples) results.push_back(Exact(f, s.point));
+    const gen::RefineDecision decision =
+        gen::DecideRefinement(scene, axes, data, samples, results, probes);
+    if (decision.next[1].values.size() == axes[1].values.size() &&
+        decision.next[0].values.size() == axes[0].values.size()) {
+      break;
+    }
+    axes = decision.next;
+  }
+  return axes;
 }
 
 // Largest and 95th-percentile |fy error| at random points (fixed seed).
@@ -69,24 +105,7 @@ TEST(Refine, SplitsWhereTheKinkIsAndNowhereElse) {
   const Scene scene = SyntheticScene(dir.path());
   std::vector<SceneAxis> axes = scene.axes;
   const auto [start_max, start_p95] = FyErrors(axes, Fill(axes));
-  for (int pass = 0; pass < 12; ++pass) {
-    const gen::TableData data = Fill(axes);
-    const std::vector<gen::RefineSample> samples =
-        gen::DrawRefineSamples(axes, *scene.refine, pass);
-    std::vector<PointResult> results;
-    for (const gen::RefineSample& s : samples) {
-      PointResult r;
-      r.status = PointStatus::kOk;
-      r.values = Synthetic(s.point);
-      results.push_back(r);
-    }
-    const gen::RefineDecision decision = gen::DecideRefinement(scene, axes, data, samples, results);
-    if (decision.next[1].values.size() == axes[1].values.size() &&
-        decision.next[0].values.size() == axes[0].values.size()) {
-      break;
-    }
-    axes = decision.next;
-  }
+  axes = RefineOn(scene, Synthetic);
   const auto [end_max, end_p95] = FyErrors(axes, Fill(axes));
   // The target is 0.5 % of the 10 kN load: 50 N at interval midpoints. Away from midpoints
   // the error is smaller, so p95 stays under it; the largest error sits in the two cells with
@@ -109,6 +128,70 @@ TEST(Refine, SplitsWhereTheKinkIsAndNowhereElse) {
   }
   EXPECT_NEAR(std::fabs(at), kKnee, 4.0 * smallest);
   EXPECT_GE(largest, 0.005 - 1e-12);  // the flat outer intervals are never split
+}
+
+// A lateral force that bends sharply around centred running (as the gravitational and creep
+// terms do where the contact point jumps), gently elsewhere; linear in yaw.
+constexpr double kBend = 0.4;  // mm
+std::vector<double> Bend(const std::vector<double>& p) {
+  const double y = p[0], yaw = p[1];
+  return {200.0 * y, (100.0 * y + 300.0 * std::tanh(y / kBend)) * (1.0 + 10.0 * yaw), 10000.0};
+}
+
+Scene BendScene(const fs::path& dir, const std::string& slope) {
+  const std::string table =
+      "axes = [\"y\", \"yaw\"]\ny = {from = -5.0, to = 5.0, count = 3}\n"
+      "yaw = {from = -0.01, to = 0.01, count = 5}\noutputs = [\"fx\", \"fy\", \"fz\"]\n"
+      "[table.refine]\ntarget = 0.05\nsamples = 8\nmax_points = 5000\n" +
+      slope;
+  return ParseScene(TinyScene(table), dir, "bend.toml");
+}
+
+TEST(Refine, ASlopeTargetPlacesNodesAtTheStateUntilTheSlopeMeetsIt) {
+  ScratchDir dir("refine_slope");
+  // 5 % of the load pointwise: the three starting y nodes already meet it (150 N at ±2.5 mm).
+  const Scene plain = BendScene(dir.path(), "");
+  EXPECT_EQ(RefineOn(plain, Bend)[0].values.size(), 3u);
+  const Scene scene =
+      BendScene(dir.path(), "[table.refine.slope]\ntarget = 0.01\nstep = {y = 0.1}\n");
+  ASSERT_TRUE(scene.refine->slope);
+  const std::vector<SceneAxis> axes = RefineOn(scene, Bend);
+  // The table's central difference at y = 0 against the function's own (an independent
+  // computation, not the refinement's): within the 1 % target.
+  const gen::TableData data = Fill(axes, Bend);
+  const double h = 0.1;
+  const double table = (gen::InterpolateLinear(axes, data, 1, {h, 0.0}) -
+                        gen::InterpolateLinear(axes, data, 1, {-h, 0.0})) /
+                       (2.0 * h);
+  const double exact = (Bend({h, 0.0})[1] - Bend({-h, 0.0})[1]) / (2.0 * h);
+  EXPECT_NEAR(table, exact, 0.01 * std::fabs(exact)) << axes[0].values.size() << " y nodes";
+  // Before: the secant across [0, 5 mm], a fifth of the slope.
+  EXPECT_LT((Bend({5.0, 0.0})[1] - Bend({-5.0, 0.0})[1]) / 10.0, 0.25 * exact);
+  // The nodes it added lie within a few steps of the state, two per halving.
+  const std::vector<double>& y = axes[0].values;
+  EXPECT_GT(y.size(), 3u);
+  EXPECT_LE(y.size(), 3u + 2u * 8u);
+  for (const double node : y) {
+    if (std::fabs(node) != 5.0) {
+      EXPECT_LE(std::fabs(node), 2.5 + 1e-12);
+    }
+  }
+  EXPECT_EQ(axes[1].values.size(), 5u);  // linear in yaw: the yaw slope is exact
+  EXPECT_LE(gen::SlopeErrors(scene, axes, data, Probes(scene, Bend))[0], 1.0);
+}
+
+TEST(Refine, ASlopeTargetNeedsItsStateOnTheNodes) {
+  ScratchDir dir("refine_slope_bad");
+  try {
+    BendScene(dir.path(), "[table.refine.slope]\nat = {y = 0.3}\n");
+    FAIL() << "accepted a slope state between nodes";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("table.refine.slope.at"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("y = 0.3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\nstep = {y = 6.0}\n"), InputError);
+  EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\nstpe = {y = 1.0}\n"), InputError);
+  EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\naxes = [\"x\"]\n"), InputError);
 }
 
 // A 1-D refinement of the Manchester pair across the tread-to-flange transition.

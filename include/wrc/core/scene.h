@@ -56,6 +56,18 @@ struct RefineSettings {
   /// Smallest interval per axis name: an interval shorter than twice this is never split.
   /// Axes not listed get (range) / 2048.
   std::map<std::string, double, std::less<>> min_step;
+  /// `[table.refine.slope]`: a target on the table's slopes at one state (centred running):
+  /// the linearised contact a stability analysis or a simulator's Jacobian takes from it.
+  struct Slope {
+    /// Error of the table's central difference against the solver's, relative to the
+    /// solver's (with a floor: the output's pointwise target over the axis range).
+    double fraction = 0.01;
+    /// The state, per axis in dimension order; a node of the starting grid.
+    std::vector<double> at;
+    /// Central-difference step per axis in dimension order; 0: the axis' slope is not a target.
+    std::vector<double> step;
+  };
+  std::optional<Slope> slope;
 };
 
 /// A parsed and validated scene.
