@@ -455,7 +455,6 @@ double NormalisedError(const ErrorModel& model, double load, const std::vector<d
 struct IntervalScore {
   double max_error = 0.0;       ///< In units of the target.
   double sum_of_squares = 0.0;  ///< Of the sampled errors, in units of the target.
-  double slope_error = 0.0;     ///< Of the slope target, when the interval is one it reads.
   int samples = 0;
   double MeanSquare() const { return samples > 0 ? sum_of_squares / samples : 0.0; }
   void Add(double error) {
@@ -527,11 +526,6 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
     const double range = v.back() - v.front();
     for (std::size_t j = 0; j < scores[a].size(); ++j) {
       const IntervalScore& score = scores[a][j];
-      if (score.slope_error > 1.0) {
-        // A missed slope target is mended only here, and costs one node: first.
-        candidates.push_back({a, j, std::numeric_limits<double>::infinity()});
-        continue;
-      }
       if (score.max_error <= 1.0) continue;
       const double width = (v[j + 1] - v[j]) / range;
       candidates.push_back({a, j, score.MeanSquare() * width * static_cast<double>(v.size())});
@@ -576,33 +570,31 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
 
 // ---- slope target ---------------------------------------------------------------------------
 
-// The interval of `v` holding x strictly inside, or none when x is a node (the interpolant is
-// exact there, whatever the interval).
-std::optional<std::size_t> IntervalInside(const std::vector<double>& v, double x) {
-  const auto upper = std::upper_bound(v.begin(), v.end(), x);
-  if (upper == v.begin() || upper == v.end() || *(upper - 1) == x) return std::nullopt;
-  return static_cast<std::size_t>(upper - v.begin()) - 1;
-}
-
-// Marks the intervals a missed slope reads (those holding the state ± step) for splitting.
-// Returns the number of missed slopes with no interval left to split (min_step).
-std::size_t ScoreSlopes(const Axes& axes, const RefineSettings& settings,
-                        const std::vector<double>& slope_errors,
-                        std::vector<std::vector<IntervalScore>>* scores) {
+// Adds the state ± step as nodes of every axis whose slope misses its target: the table's
+// central difference then reads solved values only (the state is a node of every axis), the
+// solver's own. Counts in `refused` the slopes the budget leaves missed. (A slope that misses
+// with both nodes already there differs from the solver's by the solver's own noise.)
+void AddSlopeNodes(const RefineSettings& settings, const std::vector<double>& slope_errors,
+                   Axes* axes, std::size_t* refused) {
   const RefineSettings::Slope& slope = *settings.slope;
-  std::size_t stuck = 0;
-  for (std::size_t a = 0; a < axes.size(); ++a) {
+  for (std::size_t a = 0; a < axes->size(); ++a) {
     if (!(slope_errors[a] > 1.0)) continue;
-    bool marked = false;
+    std::vector<double> values = (*axes)[a].values;
     for (const double x : {slope.at[a] - slope.step[a], slope.at[a] + slope.step[a]}) {
-      const std::optional<std::size_t> j = IntervalInside(axes[a].values, x);
-      if (!j || !Splittable(settings, axes[a], *j)) continue;
-      (*scores)[a][*j].slope_error = slope_errors[a];
-      marked = true;
+      if (std::find(values.begin(), values.end(), x) == values.end()) values.push_back(x);
     }
-    stuck += marked ? 0 : 1;
+    std::sort(values.begin(), values.end());
+    const std::size_t added = values.size() - (*axes)[a].values.size();
+    const double grown = static_cast<double>(PointCount(*axes)) *
+                         static_cast<double>(values.size()) /
+                         static_cast<double>((*axes)[a].values.size());
+    if (added == 0) continue;
+    if (grown > static_cast<double>(settings.max_points)) {
+      ++*refused;
+      continue;
+    }
+    (*axes)[a].values = std::move(values);
   }
-  return stuck;
 }
 
 // ---- final estimate -------------------------------------------------------------------------
@@ -1204,23 +1196,23 @@ RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>
                                 const std::vector<PointResult>& results,
                                 const std::vector<PointResult>& probes) {
   const RefineSettings& settings = *scene.refine;
-  auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
+  const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
   RefineDecision decision;
-  if (settings.slope) {
-    decision.slope_errors = SlopeErrors(scene, axes, data, probes);
-    decision.above_target += ScoreSlopes(axes, settings, decision.slope_errors, &scores);
-    for (const double e : decision.slope_errors) {
-      if (e > decision.worst) decision.worst = e;
-    }
-  }
   for (const auto& axis_scores : scores) {
     for (const IntervalScore& s : axis_scores) {
-      const double error = std::max(s.max_error, s.slope_error);
-      decision.worst = std::max(decision.worst, error);
-      decision.above_target += error > 1.0 ? 1 : 0;
+      decision.worst = std::max(decision.worst, s.max_error);
+      decision.above_target += s.max_error > 1.0 ? 1 : 0;
     }
   }
   decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);
+  if (settings.slope) {
+    decision.slope_errors = SlopeErrors(scene, axes, data, probes);
+    for (const double e : decision.slope_errors) {
+      decision.worst = std::max(decision.worst, e);
+      decision.above_target += e > 1.0 ? 1 : 0;
+    }
+    AddSlopeNodes(settings, decision.slope_errors, &decision.next, &decision.refused);
+  }
   return decision;
 }
 

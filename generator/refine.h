@@ -85,7 +85,8 @@ struct RefineDecision {
   std::vector<double> slope_errors;  ///< SlopeErrors() of this grid (empty without a target).
 };
 /// `probes`: the exact solves at SlopeProbes() when the scene has a slope target. An axis whose
-/// slope misses it has the intervals that its central difference reads split first.
+/// slope misses it gets the state ± step as nodes, so that the table's central difference
+/// there reads solved values only.
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
                                 const std::vector<PointResult>& results,
