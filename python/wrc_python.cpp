@@ -92,6 +92,20 @@ void EvalPoints(const wrc_table* t, const double* points, py::ssize_t n, int n_a
   }
 }
 
+// An instance made by __new__ without __init__ has no C++ object behind it, and pybind11 hands
+// its methods whatever the memory holds: every method reaches its object through this check.
+template <class T>
+T& Constructed(py::handle self) {
+  auto* instance = reinterpret_cast<py::detail::instance*>(self.ptr());
+  const py::detail::value_and_holder v_h =
+      instance->get_value_and_holder(py::detail::get_type_info(typeid(T)));
+  if (!v_h || !v_h.holder_constructed() || v_h.value_ptr() == nullptr) {
+    throw py::type_error(py::str(py::type::handle_of(self).attr("__name__")).cast<std::string>() +
+                         " object is not initialised: create it with its constructor");
+  }
+  return *static_cast<T*>(v_h.value_ptr());
+}
+
 py::tuple Evaluate(const PyTable& self, const py::handle& points, bool derivatives) {
   const wrc::Table& t = self.table;
   const Doubles p = PointsArray(t, points);
@@ -191,8 +205,20 @@ struct PyWheelset {
   wrc::WheelsetTable wheelset;
 };
 
-std::shared_ptr<PyWheelset> MakeWheelset(std::shared_ptr<PyTable> left,
-                                         std::shared_ptr<PyTable> right) {
+// A table argument: None, or a constructed Table (not one made by __new__ alone).
+std::shared_ptr<PyTable> TableArgument(const py::object& table, const char* name) {
+  if (table.is_none()) return nullptr;
+  if (!py::isinstance<PyTable>(table)) {
+    throw py::type_error(std::string("Wheelset: ") + name + " must be a wrc.Table or None");
+  }
+  Constructed<PyTable>(table);
+  return table.cast<std::shared_ptr<PyTable>>();
+}
+
+std::shared_ptr<PyWheelset> MakeWheelset(const py::object& left_table,
+                                         const py::object& right_table) {
+  std::shared_ptr<PyTable> left = TableArgument(left_table, "left");
+  std::shared_ptr<PyTable> right = TableArgument(right_table, "right");
   if (!left && !right) throw py::value_error("Wheelset: give a left or a right table, or both");
   return std::make_shared<PyWheelset>(std::move(left), std::move(right));
 }
@@ -309,29 +335,44 @@ PYBIND11_MODULE(wrc, m) {
 
   py::class_<PyTable, std::shared_ptr<PyTable>>(m, "Table", "An open wrc table (read fully).")
       .def(py::init<const std::string&>(), py::arg("path"))
-      .def_property_readonly("axis_names", [](const PyTable& s) { return s.table.axis_names(); })
-      .def_property_readonly("output_names",
-                             [](const PyTable& s) { return s.table.output_names(); })
       .def_property_readonly(
-          "axes", [](const PyTable& s) { return AxesDict(s.table); },
+          "axis_names", [](py::handle s) { return Constructed<PyTable>(s).table.axis_names(); })
+      .def_property_readonly(
+          "output_names", [](py::handle s) { return Constructed<PyTable>(s).table.output_names(); })
+      .def_property_readonly(
+          "axes", [](py::handle s) { return AxesDict(Constructed<PyTable>(s).table); },
           "{name: node coordinates}, in axis order")
       .def_property_readonly(
-          "outputs", [](const PyTable& s) { return OutputsDict(s.table); },
+          "outputs", [](py::handle s) { return OutputsDict(Constructed<PyTable>(s).table); },
           "{name: grid values shaped like the axes}")
-      .def_property_readonly("status", [](const PyTable& s) { return StatusGrid(s.table); })
-      .def("axis_unit", [](const PyTable& s, int i) { return s.table.axis_unit(i); })
-      .def("output_unit", [](const PyTable& s, int i) { return s.table.output_unit(i); })
-      .def("attribute", [](const PyTable& s, const std::string& n) { return s.table.attribute(n); })
+      .def_property_readonly("status",
+                             [](py::handle s) { return StatusGrid(Constructed<PyTable>(s).table); })
+      .def("axis_unit",
+           [](py::handle s, int i) { return Constructed<PyTable>(s).table.axis_unit(i); })
+      .def("output_unit",
+           [](py::handle s, int i) { return Constructed<PyTable>(s).table.output_unit(i); })
+      .def("attribute",
+           [](py::handle s, const std::string& n) {
+             // A NUL would end the C name early and read another attribute.
+             if (n.find('\0') != std::string::npos) {
+               throw py::value_error("attribute: the name contains a NUL byte");
+             }
+             return Constructed<PyTable>(s).table.attribute(n);
+           })
       .def_property(
           "interpolation",
-          [](const PyTable& s) {
-            return s.table.interpolation() == wrc::Interpolation::kCubic ? "cubic" : "linear";
+          [](py::handle s) {
+            return Constructed<PyTable>(s).table.interpolation() == wrc::Interpolation::kCubic
+                       ? "cubic"
+                       : "linear";
           },
-          SetInterpolation)
+          [](py::handle s, const std::string& mode) {
+            SetInterpolation(Constructed<PyTable>(s), mode);
+          })
       .def(
           "eval",
-          [](const PyTable& s, const py::handle& points) {
-            py::tuple r = Evaluate(s, points, false);
+          [](py::handle s, const py::handle& points) {
+            py::tuple r = Evaluate(Constructed<PyTable>(s), points, false);
             RaiseOnError(r[1].cast<Ints>());
             return py::object(r[0]);
           },
@@ -339,26 +380,34 @@ PYBIND11_MODULE(wrc, m) {
           "Values (N, n_outputs) at points (N, n_axes); raises ValueError if a point fails.")
       .def(
           "eval_flags",
-          [](const PyTable& s, const py::handle& points) { return Evaluate(s, points, false); },
+          [](py::handle s, const py::handle& points) {
+            return Evaluate(Constructed<PyTable>(s), points, false);
+          },
           py::arg("points"), "(values, flags): flags per point as wrc_table_eval returns them.")
       .def(
           "eval_deriv",
-          [](const PyTable& s, const py::handle& points) { return Evaluate(s, points, true); },
+          [](py::handle s, const py::handle& points) {
+            return Evaluate(Constructed<PyTable>(s), points, true);
+          },
           py::arg("points"),
           "(values, derivatives (N, n_outputs, n_axes), flags), as wrc_table_eval_deriv.");
 
   py::class_<PyWheelset, std::shared_ptr<PyWheelset>>(m, "Wheelset",
                                                       "Both wheels of a wheelset from tables.")
-      .def(py::init(&MakeWheelset), py::arg("left") = nullptr, py::arg("right") = nullptr)
+      .def(py::init(&MakeWheelset), py::arg("left") = py::none(), py::arg("right") = py::none())
       .def(
           "set_rail_origin",
-          [](PyWheelset& s, int side, double y, double z) {
-            s.wheelset.set_rail_origin(side, y, z);
+          [](py::handle s, int side, double y, double z) {
+            Constructed<PyWheelset>(s).wheelset.set_rail_origin(side, y, z);
           },
           py::arg("side"), py::arg("y"), py::arg("z"))
-      .def("eval", &WheelsetEval,
-           "eval(y=0, z=0, roll=0, yaw=0, vy=0, vroll=0, vyaw=0, omega, velocity, fz_left, "
-           "fz_right, mu_left, mu_right): scalars or arrays of one size N; returns a dict of "
-           "arrays (force, moment (N, 2, 3); contact_y, contact_angle, flags (N, 2); "
-           "total_force, total_moment (N, 3); code (N,)).");
+      .def(
+          "eval",
+          [](py::handle s, const py::kwargs& kwargs) {
+            return WheelsetEval(Constructed<PyWheelset>(s), kwargs);
+          },
+          "eval(y=0, z=0, roll=0, yaw=0, vy=0, vroll=0, vyaw=0, omega, velocity, fz_left, "
+          "fz_right, mu_left, mu_right): scalars or arrays of one size N; returns a dict of "
+          "arrays (force, moment (N, 2, 3); contact_y, contact_angle, flags (N, 2); "
+          "total_force, total_moment (N, 3); code (N,)).");
 }

@@ -144,6 +144,38 @@ class PythonModuleTest(unittest.TestCase):
             with self.assertRaises(ValueError):
                 grid.flat[0] = 1
 
+    def test_an_object_made_without_its_constructor_is_refused(self):
+        # __new__ alone leaves no C++ object behind: every use must raise, never read the memory.
+        # In a child process under MALLOC_PERTURB_, so that a read of freed or uninitialised
+        # memory crashes (and fails this test) instead of passing by luck.
+        script = "\n".join([
+            "import wrc",
+            "t = wrc.Table.__new__(wrc.Table)",
+            "w = wrc.Wheelset.__new__(wrc.Wheelset)",
+            "uses = [lambda: t.eval([0.0, 0.0]), lambda: t.eval_flags([0.0, 0.0]),",
+            "        lambda: t.eval_deriv([0.0, 0.0]), lambda: t.outputs, lambda: t.axes,",
+            "        lambda: t.status, lambda: t.axis_names, lambda: t.output_names,",
+            "        lambda: t.axis_unit(0), lambda: t.output_unit(0), lambda: t.attribute('x'),",
+            "        lambda: t.interpolation, lambda: setattr(t, 'interpolation', 'cubic'),",
+            "        lambda: wrc.Wheelset(left=t), lambda: w.eval(omega=-1.0, velocity=1.0),",
+            "        lambda: w.set_rail_origin(0, 0.0, 0.0)]",
+            "for use in uses:",
+            "    try:",
+            "        use()",
+            "    except TypeError as e:",
+            "        assert 'not initialised' in str(e), e",
+            "    else:",
+            "        raise SystemExit('accepted')",
+            "print('refused', len(uses))",
+        ])
+        env = dict(os.environ, MALLOC_PERTURB_="165", PYTHONPATH=os.pathsep.join(sys.path))
+        run = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
+                             text=True, timeout=60)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertEqual(run.stdout.strip(), "refused 16")
+        with self.assertRaises(ValueError):
+            self.table.attribute("scene\0junk")
+
     def test_closed_form_value(self):
         small = wrc.Table(self.small_path)
         values = small.eval([0.5, 0.005])
