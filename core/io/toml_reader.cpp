@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "wrc/core/errors.h"
@@ -19,10 +20,27 @@ std::string PositionPrefix(const std::string& file, const toml::source_position&
   return prefix + ": ";
 }
 
+// A string as TOML writes it, control characters escaped: a message is one line of text, and a
+// NUL in it would end it for every C reader of what().
+std::string QuotedString(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    const auto code = static_cast<unsigned char>(c);
+    if (code < 0x20 || code == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", code);
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
 }  // namespace
 
 std::string DescribeValue(const toml::node& node) {
-  if (const auto* text = node.as_string()) return "\"" + text->get() + "\"";
+  if (const auto* text = node.as_string()) return QuotedString(text->get());
   if (const auto* integer = node.as_integer()) return std::to_string(integer->get());
   if (const auto* floating = node.as_floating_point()) return FormatNumber(floating->get());
   if (const auto* boolean = node.as_boolean()) return boolean->get() ? "true" : "false";
@@ -226,6 +244,11 @@ std::optional<std::string> Section::OptionalString(std::string_view key) const {
   if (node == nullptr) return std::nullopt;
   const auto* text = node->as_string();
   if (text == nullptr) file_.Fail(node, Path(key), "must be a string");
+  // No key of ours holds a NUL, and a path holding one would be cut there by the C library and
+  // name another file.
+  if (text->get().find('\0') != std::string::npos) {
+    file_.Fail(node, Path(key), "contains a NUL character (\\u0000)");
+  }
   return text->get();
 }
 

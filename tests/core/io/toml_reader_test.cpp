@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 
 namespace wrc::io {
@@ -19,6 +22,24 @@ TEST(SuggestName, OneOrTwoEditsByLength) {
   EXPECT_EQ(SuggestName("veloicty", {"velocity", "y"}), "velocity");
   EXPECT_EQ(SuggestName("abc", {"xyz"}), "");  // nothing near
   EXPECT_EQ(SuggestName("spinn", {"roll", "yaw"}), "");
+}
+
+TEST(Section, AStringWithNulIsRefusedNamingTheKey) {
+  // A path cut at the NUL by the C library would open another file, and report success.
+  const SourceFile file("case.toml");
+  const toml::table root = file.Parse("[rail]\nprofile = \"rail.prr\\u0000junk\"\n");
+  const Section rail(file, root, "rail");
+  try {
+    rail.OptionalString("profile");
+    FAIL() << "accepted a NUL";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("case.toml:2"), std::string::npos) << message;
+    EXPECT_NE(message.find("rail.profile"), std::string::npos) << message;
+    EXPECT_NE(message.find("NUL"), std::string::npos) << message;
+  }
+  const toml::table plain = file.Parse("[rail]\nprofile = \"rail.prr\"\n");
+  EXPECT_EQ(Section(file, plain, "rail").OptionalString("profile"), "rail.prr");
 }
 
 }  // namespace
