@@ -589,7 +589,11 @@ void AddSlopeNodes(const RefineSettings& settings, const std::vector<double>& sl
                          static_cast<double>(values.size()) /
                          static_cast<double>((*axes)[a].values.size());
     if (added == 0) continue;
-    if (grown > static_cast<double>(settings.max_points)) {
+    bool resolvable = true;  // the runtime's axis limits, as for a split
+    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+      resolvable = resolvable && AxisStepIsResolvable(values[i], values[i + 1]);
+    }
+    if (!resolvable || grown > static_cast<double>(settings.max_points)) {
       ++*refused;
       continue;
     }

@@ -239,6 +239,27 @@ TEST(Refine, RealSceneGetsCloserToTheSolver) {
   EXPECT_NE(table.attribute("refine_stop").find("target met"), std::string::npos);
 }
 
+TEST(Refine, RealSceneMeetsItsSlopeTarget) {
+  ScratchDir dir("refine_real_slope");
+  const fs::path path = WriteFile(
+      dir / "slope.toml",
+      TinyScene(RealTable("target = 0.05\nsamples = 1\n[table.refine.slope]\nat = {y = 5.0}\n"
+                          "step = {y = 0.25}\n")));
+  const Scene scene = LoadScene(path);
+  const GenerateSummary summary = GenerateTable(scene, Quiet(dir / "slope.h5"));
+  ASSERT_TRUE(summary.complete);
+  // The table's central difference of fy at y = 5 mm against exact solves (through the
+  // runtime, not the refinement's own bookkeeping), within the 1 % target.
+  Table table((dir / "slope.h5").string());
+  const auto fy = [&](double y) { return table.eval(std::vector<double>{y})[1]; };
+  const auto exact = [&](double y) { return SolveWheelRail(CaseAtPoint(scene, {y})).force_T(1); };
+  const double table_slope = (fy(5.25) - fy(4.75)) / 0.5;
+  const double solver_slope = (exact(5.25) - exact(4.75)) / 0.5;
+  EXPECT_NEAR(table_slope, solver_slope, 0.01 * std::fabs(solver_slope));
+  const std::string estimate = table.attribute("refine_estimated_error");
+  EXPECT_NE(estimate.find("\"slope\":{\"y\":"), std::string::npos) << estimate;
+}
+
 TEST(Refine, ResumedRunsGiveTheSameBits) {
   ScratchDir dir("refine_resume");
   const fs::path scene_path = WriteFile(

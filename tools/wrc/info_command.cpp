@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "runtime/hdf5/table_schema.h"
@@ -127,6 +128,20 @@ void PrintRefinement(const TableInfo& info) {
     std::cout << "  estimated error at " << e.value("points", 0)
               << " random points (multilinear): p50 " << e["p50"].get<double>() << ", p95 "
               << e["p95"].get<double>() << ", max " << e["max"].get<double>() << " × target\n";
+  }
+  if (e.is_object() && e.contains("slope") && e["slope"].is_object()) {
+    std::cout << "  slope errors at the slope state:";
+    for (const auto& [axis, error] : e["slope"].items()) {
+      std::ostringstream value;
+      value << std::setprecision(3);
+      if (error.is_number()) {
+        value << error.get<double>();
+      } else {
+        value << "–";  // not solved
+      }
+      std::cout << ' ' << axis << ' ' << value.str();
+    }
+    std::cout << " × target\n";
   }
 }
 
