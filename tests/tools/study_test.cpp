@@ -134,21 +134,28 @@ TEST_F(Study, TablesRunsOnTheUsersScene) {
   }
 }
 
+// The Manchester case of the fixture as a scene with `table` (its [table] section): the state's
+// axis quantities removed, so that the axes give them.
+std::string TableScene(const fs::path& dir, const std::string& table) {
+  std::string scene = ReadFile(dir / "mbench.toml");
+  for (const char* key : {"y = 4.0  # mm\n", "yaw = 0.002  # rad\n", "fz = 10000.0  # N\n"}) {
+    scene.replace(scene.find(key), std::string(key).size(), "");
+  }
+  return scene + table;
+}
+
 // From the user's directory, with no --model: the shipped wheelset compiled in. The creep terms
 // of the linearised contact (∂Fy/∂ψ, ∂Mz/∂vyaw) come from the yaw and spin axes, whose nodes at
 // ±2e-4 make the table's secants those of the solver's ±1e-4 steps within 1 %; 10 % tells a
 // wrong wheelset, wheel or sign apart. (The slopes along y are not compared: on this pair the
 // forces bend sharply within ±1 mm of the centre, which a table this coarse does not follow.)
 TEST_F(Study, DynamicsRunsWithTheShippedWheelsetFromAnyDirectory) {
-  std::string scene = ReadFile(dir_ / "mbench.toml");
-  for (const char* key : {"y = 4.0  # mm\n", "yaw = 0.002  # rad\n", "fz = 10000.0  # N\n"}) {
-    scene.replace(scene.find(key), std::string(key).size(), "");
-  }
-  scene +=
-      "[table]\naxes = [\"y_wheel\", \"fz\", \"roll\", \"yaw\", \"spin\"]\n"
-      "y_wheel = [-1.0, 0.0, 1.0]\nfz = [12500.0]\nroll = [-0.001, 0.0, 0.001]\n"
-      "yaw = [-0.0002, 0.0, 0.0002]\nspin = [-0.0002, 0.0, 0.0002]\n"
-      "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"z\"]\n";
+  const std::string scene =
+      TableScene(dir_,
+                 "[table]\naxes = [\"y_wheel\", \"fz\", \"roll\", \"yaw\", \"spin\"]\n"
+                 "y_wheel = [-1.0, 0.0, 1.0]\nfz = [12500.0]\nroll = [-0.001, 0.0, 0.001]\n"
+                 "yaw = [-0.0002, 0.0, 0.0002]\nspin = [-0.0002, 0.0, 0.0002]\n"
+                 "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"z\"]\n");
   std::ofstream(dir_ / "scene.toml") << scene;
   ASSERT_EQ(Run("generate scene.toml -o t.h5 --threads 2"), 0) << Err();
   ASSERT_EQ(Run("study dynamics t.h5 --linear-only --out out"), 0) << Err();
@@ -172,15 +179,12 @@ TEST_F(Study, DynamicsRunsWithTheShippedWheelsetFromAnyDirectory) {
 // secants in y (nodes at its ±0.25 mm steps) and secants over 2e-4 in yaw and spin (within 1 % of
 // the solver's there); 10 % tells a wrong load, source or unit apart.
 TEST_F(Study, DynamicsGivesTheVehiclesLinearCriticalSpeed) {
-  std::string scene = ReadFile(dir_ / "mbench.toml");
-  for (const char* key : {"y = 4.0  # mm\n", "yaw = 0.002  # rad\n", "fz = 10000.0  # N\n"}) {
-    scene.replace(scene.find(key), std::string(key).size(), "");
-  }
-  scene +=
+  const std::string scene = TableScene(
+      dir_,
       "[table]\naxes = [\"y_wheel\", \"fz\", \"roll\", \"yaw\", \"spin\"]\n"
       "y_wheel = [-0.25, 0.0, 0.25]\nfz = [50000.0, 60000.0]\nroll = [-0.001, 0.0, 0.001]\n"
       "yaw = [-0.0002, 0.0, 0.0002]\nspin = [-0.0002, 0.0, 0.0002]\n"
-      "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"z\"]\n";
+      "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"z\"]\n");
   std::ofstream(dir_ / "scene.toml") << scene;
   ASSERT_EQ(Run("generate scene.toml -o t.h5 --threads 2"), 0) << Err();
   const fs::path vehicle = kSource / "tables" / "manchester_vehicle.toml";

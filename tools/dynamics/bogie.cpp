@@ -76,11 +76,10 @@ BogieParameters ParseBogieParameters(const std::string& toml_text, const std::st
   p.secondary_lateral_damping = optional(sec, "lateral_damping");
   p.secondary_yaw_damping = optional(sec, "yaw_damping");
   p.secondary_semi_spacing = required(sec, "semi_spacing");
-  p.time_step = CheckedNumber(sim, "time_step", false, 1e-3);
-  p.duration = CheckedNumber(sim, "duration", false, 3.0);
-  p.initial_y = sim.Number("initial_y", 1.0);
-  if (p.time_step > p.duration) sim.Fail("time_step", "must not exceed simulation.duration");
-  if (p.duration / p.time_step > 1e8) sim.Fail("duration", "more than 10^8 steps");
+  const SimulationSettings run = ReadSimulation(sim, 3.0, 1.0);
+  p.time_step = run.time_step;
+  p.duration = run.duration;
+  p.initial_y = run.initial_y;
   return p;
 }
 

@@ -63,11 +63,10 @@ Parameters ParseParameters(const std::string& toml_text, const std::string& disp
   p.longitudinal_stiffness = Checked(su, "longitudinal_stiffness", true);
   p.longitudinal_damping = Checked(su, "longitudinal_damping", true, 0.0);
   p.spring_semi_spacing = Checked(su, "semi_spacing", false);
-  p.time_step = Checked(sim, "time_step", false, 1e-3);
-  p.duration = Checked(sim, "duration", false, 2.0);
-  p.initial_y = sim.Number("initial_y", 2.0);
-  if (p.time_step > p.duration) sim.Fail("time_step", "must not exceed simulation.duration");
-  if (p.duration / p.time_step > 1e8) sim.Fail("duration", "more than 10^8 steps");
+  const SimulationSettings run = ReadSimulation(sim, 2.0, 2.0);
+  p.time_step = run.time_step;
+  p.duration = run.duration;
+  p.initial_y = run.initial_y;
   return p;
 }
 

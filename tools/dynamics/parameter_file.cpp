@@ -50,6 +50,19 @@ double CheckedNumber(const io::Section& s, std::string_view key, bool allow_zero
   return v;
 }
 
+SimulationSettings ReadSimulation(const io::Section& sim, double default_duration,
+                                  double default_initial_y) {
+  SimulationSettings settings;
+  settings.time_step = CheckedNumber(sim, "time_step", false, settings.time_step);
+  settings.duration = CheckedNumber(sim, "duration", false, default_duration);
+  settings.initial_y = sim.Number("initial_y", default_initial_y);
+  if (settings.time_step > settings.duration) {
+    sim.Fail("time_step", "must not exceed simulation.duration");
+  }
+  if (settings.duration / settings.time_step > 1e8) sim.Fail("duration", "more than 10^8 steps");
+  return settings;
+}
+
 std::string ReadParameterFile(const std::filesystem::path& path, const std::string& what) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string() + ": cannot open the " + what + " file");

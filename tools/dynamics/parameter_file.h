@@ -25,6 +25,17 @@ void CheckParameterNames(const toml::table& root, const io::SourceFile& file,
 /// is NaN.
 double CheckedNumber(const io::Section& s, std::string_view key, bool allow_zero, double fallback);
 
+/// `[simulation]`: the integrator's step and duration (s) and the initial lateral disturbance
+/// (mm), with the model's defaults for the last two; the step at most the duration and at
+/// most 10^8 steps.
+struct SimulationSettings {
+  double time_step = 1e-3;
+  double duration = 0.0;
+  double initial_y = 0.0;
+};
+SimulationSettings ReadSimulation(const io::Section& sim, double default_duration,
+                                  double default_initial_y);
+
 /// The text of a parameter file; InputError "PATH: cannot open the WHAT file" when unreadable.
 std::string ReadParameterFile(const std::filesystem::path& path, const std::string& what);
 
