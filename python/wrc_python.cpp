@@ -264,6 +264,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
   const py::ssize_t n = StateCount(columns);
   Doubles force({n, py::ssize_t{2}, py::ssize_t{3}}), moment({n, py::ssize_t{2}, py::ssize_t{3}});
   Doubles contact_y({n, py::ssize_t{2}}), contact_angle({n, py::ssize_t{2}});
+  Doubles t_gamma({n, py::ssize_t{2}});
   Doubles total_force({n, py::ssize_t{3}}), total_moment({n, py::ssize_t{3}});
   Ints flags({n, py::ssize_t{2}}), code(n);
   // Raw pointers, taken while the GIL is held; a size-1 column repeats its value (stride 0).
@@ -277,6 +278,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
   double* m_out = moment.mutable_data();
   double* y_out = contact_y.mutable_data();
   double* a_out = contact_angle.mutable_data();
+  double* g_out = t_gamma.mutable_data();
   double* tf_out = total_force.mutable_data();
   double* tm_out = total_moment.mutable_data();
   int* flag_out = flags.mutable_data();
@@ -301,6 +303,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
         }
         y_out[i * 2 + side] = failed ? kNan : c.contact_y;
         a_out[i * 2 + side] = failed ? kNan : c.contact_angle;
+        g_out[i * 2 + side] = failed ? kNan : c.t_gamma;
         flag_out[i * 2 + side] = failed ? code_out[i] : c.flags;
       }
       for (int j = 0; j < 3; ++j) {
@@ -314,6 +317,7 @@ py::dict WheelsetEval(const PyWheelset& self, const py::kwargs& kwargs) {
   result["moment"] = moment;
   result["contact_y"] = contact_y;
   result["contact_angle"] = contact_angle;
+  result["t_gamma"] = t_gamma;
   result["flags"] = flags;
   result["total_force"] = total_force;
   result["total_moment"] = total_moment;
@@ -408,6 +412,6 @@ PYBIND11_MODULE(wrc, m) {
           },
           "eval(y=0, z=0, roll=0, yaw=0, vy=0, vroll=0, vyaw=0, omega, velocity, fz_left, "
           "fz_right, mu_left, mu_right): scalars or arrays of one size N; returns a dict of "
-          "arrays (force, moment (N, 2, 3); contact_y, contact_angle, flags (N, 2); "
+          "arrays (force, moment (N, 2, 3); contact_y, contact_angle, t_gamma, flags (N, 2); "
           "total_force, total_moment (N, 3); code (N,)).");
 }

@@ -43,10 +43,11 @@ constexpr const char* kQuantityNames[kQuantities] = {
 constexpr double kQuantityMirror[kQuantities] = {-1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1, -1};
 
 // Outputs the wheelset result reads, with their sign under the mirror image.
-enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kOutputs };
-constexpr const char* kOutputNames[kOutputs] = {"fx", "fy", "fz",        "mx",
-                                                "my", "mz", "contact_y", "contact_angle"};
-constexpr double kOutputMirror[kOutputs] = {1, -1, 1, -1, 1, -1, -1, -1};
+enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kTGamma, kOutputs };
+constexpr const char* kOutputNames[kOutputs] = {
+    "fx", "fy", "fz", "mx", "my", "mz", "contact_y", "contact_angle", "t_gamma"};
+// Tγ is a dissipated power: the same for a wheel and its mirror image.
+constexpr double kOutputMirror[kOutputs] = {1, -1, 1, -1, 1, -1, -1, -1, 1};
 
 // Most outputs a table may have to be read here: the result buffer lives on the stack.
 constexpr int kMaxOutputs = 64;
@@ -234,6 +235,7 @@ int EvalWheel(const Wheel& w, const wrc_wheelset_state& s, int side, wrc_wheel_c
   }
   c.contact_y = MirroredOutput(w, out, kContactY);
   c.contact_angle = MirroredOutput(w, out, kContactAngle);
+  c.t_gamma = MirroredOutput(w, out, kTGamma);
   c.flags = flags | FixedFlag(w, value);
   return c.flags;
 }

@@ -244,7 +244,10 @@ typedef struct wrc_wheel_contact {
   double moment[3];     /**< N·mm, (mx, my, mz) on the rail, about the rail's origin. */
   double contact_y;     /**< mm, lateral position of the force resultant on the rail profile. */
   double contact_angle; /**< rad, surface inclination there (track frame). */
-  int flags;            /**< WRC_FLAG_CLAMPED | WRC_FLAG_STATUS | WRC_FLAG_FIXED. */
+  /** N, frictional power per distance rolled, Tγ = −(ξ·Fx + η·Fy + φ·Mz) summed over the
+   *  patches: the wear number of the table's t_gamma output. */
+  double t_gamma;
+  int flags; /**< WRC_FLAG_CLAMPED | WRC_FLAG_STATUS | WRC_FLAG_FIXED. */
 } wrc_wheel_contact;
 
 /** Both wheels and the total. Outputs a table does not hold are NaN. */

@@ -23,8 +23,10 @@ sys.path.insert(0, MODULE_DIR)
 import wrc  # noqa: E402
 
 RADIUS, V0 = 460.0, 20000.0
-# Sign of fx fy fz mx my mz contact_y contact_angle under the mirror image in the x-z plane.
-OUTPUT_MIRROR = np.array([1, -1, 1, -1, 1, -1, -1, -1], dtype=float)
+# Sign of fx fy fz mx my mz contact_y contact_angle t_gamma under the mirror image in the x-z
+# plane.
+OUTPUT_MIRROR = np.array([1, -1, 1, -1, 1, -1, -1, -1, 1], dtype=float)
+N_OUTPUTS = len(OUTPUT_MIRROR)  # of the wheelset table tests/runtime/wheelset_table.h writes
 
 
 def wheelset_function(k, y, roll, yaw, spin):
@@ -44,6 +46,7 @@ class CApi:
     class Contact(ctypes.Structure):
         _fields_ = [("force", ctypes.c_double * 3), ("moment", ctypes.c_double * 3),
                     ("contact_y", ctypes.c_double), ("contact_angle", ctypes.c_double),
+                    ("t_gamma", ctypes.c_double),
                     ("flags", ctypes.c_int)]
 
     class Result(ctypes.Structure):
@@ -187,7 +190,7 @@ class PythonModuleTest(unittest.TestCase):
         points[12345, 2] = np.nan
         values, flags = self.table.eval_flags(points)
         handle = self.c.open(self.wheelset_path)
-        expected, _, expected_flags = self.c.eval(handle, points, 8)
+        expected, _, expected_flags = self.c.eval(handle, points, N_OUTPUTS)
         self.c.lib.wrc_table_close(handle)
         np.testing.assert_array_equal(flags, expected_flags)
         self.assertEqual(flags[12345], -2)  # WRC_ERR_NAN_INPUT
@@ -204,12 +207,12 @@ class PythonModuleTest(unittest.TestCase):
         points = random_points(rng, 20000, self.low * 1.05, self.high * 1.05)
         values, d, flags = t.eval_deriv(points)
         handle = self.c.open(self.wheelset_path, mode=1)
-        expected, expected_d, expected_flags = self.c.eval(handle, points, 8, derivatives=True)
+        expected, expected_d, expected_flags = self.c.eval(handle, points, N_OUTPUTS, derivatives=True)
         self.c.lib.wrc_table_close(handle)
         np.testing.assert_array_equal(flags, expected_flags)
         self.assertEqual(values.tobytes(), expected.tobytes())
         self.assertEqual(d.tobytes(), expected_d.tobytes())
-        self.assertEqual(d.shape, (20000, 8, 4))
+        self.assertEqual(d.shape, (20000, N_OUTPUTS, 4))
         with self.assertRaises(ValueError):
             t.interpolation = "quadratic"
 
@@ -224,7 +227,7 @@ class PythonModuleTest(unittest.TestCase):
             self.table.eval(points)
             best = min(best, time.perf_counter() - start)
         rate = len(points) / best
-        print(f"\nTable.eval multilinear, 10^6 random points, 4 axes, 8 outputs: "
+        print(f"\nTable.eval multilinear, 10^6 random points, 4 axes, {N_OUTPUTS} outputs: "
               f"{rate / 1e6:.1f} M points/s ({1e9 / rate:.0f} ns per point)")
 
     def test_wheelset_mirror_and_c_api(self):
@@ -243,6 +246,11 @@ class PythonModuleTest(unittest.TestCase):
             left = OUTPUT_MIRROR[k] * wheelset_function(k, -y, -roll, -yaw, spin)
             np.testing.assert_allclose(r["force"][:, wrc.RIGHT, k], right, rtol=1e-9)
             np.testing.assert_allclose(r["force"][:, wrc.LEFT, k], left, rtol=1e-9)
+        # Tγ, a dissipated power, is the same for a wheel and its mirror image.
+        np.testing.assert_allclose(r["t_gamma"][:, wrc.RIGHT],
+                                   wheelset_function(8, y, roll, yaw, spin), rtol=1e-9)
+        np.testing.assert_allclose(r["t_gamma"][:, wrc.LEFT],
+                                   wheelset_function(8, -y, -roll, -yaw, spin), rtol=1e-9)
         np.testing.assert_array_equal(r["total_force"], -(r["force"][:, 0] + r["force"][:, 1]))
         # The same states through the C API, to the bit.
         handle = self.c.open(self.wheelset_path)
@@ -260,6 +268,7 @@ class PythonModuleTest(unittest.TestCase):
                 self.assertEqual(list(result.wheel[side].force), list(r["force"][i, side]))
                 self.assertEqual(list(result.wheel[side].moment), list(r["moment"][i, side]))
                 self.assertEqual(result.wheel[side].contact_y, r["contact_y"][i, side])
+                self.assertEqual(result.wheel[side].t_gamma, r["t_gamma"][i, side])
         self.c.lib.wrc_wheelset_destroy(wheelset)
         self.c.lib.wrc_table_close(handle)
 

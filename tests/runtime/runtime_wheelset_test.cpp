@@ -21,8 +21,10 @@ using wrc::WheelsetTable;
 using wrc::test::WheelsetFunction;
 
 constexpr double kRadius = 460.0, kV0 = 20000.0;
-// Sign of fx fy fz mx my mz contact_y contact_angle under the mirror image in the x–z plane.
-constexpr double kOutputMirror[8] = {1, -1, 1, -1, 1, -1, -1, -1};
+// Sign of fx fy fz mx my mz contact_y contact_angle t_gamma under the mirror image in the x–z
+// plane.
+constexpr double kOutputMirror[9] = {1, -1, 1, -1, 1, -1, -1, -1, 1};
+constexpr int kOutputs = 9;
 // Exact up to the rounding of multilinear weights.
 constexpr double kTolerance = 1e-9;
 
@@ -44,7 +46,7 @@ class RuntimeWheelset : public ::testing::Test {
   static double Output(const wrc_wheel_contact& c, int k) {
     if (k < 3) return c.force[k];
     if (k < 6) return c.moment[k - 3];
-    return k == 6 ? c.contact_y : c.contact_angle;
+    return k == 6 ? c.contact_y : k == 7 ? c.contact_angle : c.t_gamma;
   }
 
   wrc::test::ScratchFile scratch_;
@@ -57,7 +59,7 @@ TEST_F(RuntimeWheelset, RightReadsTheTableLeftItsMirrorImage) {
   int flags = -1;
   const wrc_wheelset_result r = wheelset.eval(State(y, roll, yaw, spin, kV0), &flags);
   EXPECT_EQ(flags, 0);
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < kOutputs; ++k) {
     const double right = WheelsetFunction(k, {y, roll, yaw, spin});
     const double left = kOutputMirror[k] * WheelsetFunction(k, {-y, -roll, -yaw, spin});
     EXPECT_NEAR(Output(r.wheel[WRC_RIGHT], k), right, kTolerance * std::fabs(right)) << k;
@@ -71,7 +73,7 @@ TEST_F(RuntimeWheelset, SpinFromOmegaIsIndependentOfSpeed) {
   const wrc_wheelset_result slow = wheelset.eval(State(1.0, 0.0, 0.002, -0.006, kV0));
   const wrc_wheelset_result fast = wheelset.eval(State(1.0, 0.0, 0.002, -0.006, 3.7 * kV0));
   for (int side = 0; side < 2; ++side) {
-    for (int k = 0; k < 8; ++k) {
+    for (int k = 0; k < kOutputs; ++k) {
       EXPECT_NEAR(Output(fast.wheel[side], k), Output(slow.wheel[side], k), 1e-9) << k;
     }
   }
@@ -142,7 +144,7 @@ TEST_F(RuntimeWheelset, VelocitiesWithoutAxisFoldIntoYawAndSpin) {
   EXPECT_EQ(flags, 0);
   const double yaw = 0.002 - s.vy / v + s.vroll * kRadius / v;
   const double d_spin = s.vyaw * lever / v;
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < kOutputs; ++k) {
     const double right = WheelsetFunction(k, {1.0, 0.001, yaw, 0.001 + d_spin});
     const double left =
         kOutputMirror[k] * WheelsetFunction(k, {-1.0, -0.001, -yaw, 0.001 - d_spin});

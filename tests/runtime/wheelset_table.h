@@ -11,8 +11,8 @@
 namespace wrc::test {
 
 inline const std::vector<std::string>& WheelsetOutputs() {
-  static const std::vector<std::string> names = {"fx", "fy", "fz",        "mx",
-                                                 "my", "mz", "contact_y", "contact_angle"};
+  static const std::vector<std::string> names = {
+      "fx", "fy", "fz", "mx", "my", "mz", "contact_y", "contact_angle", "t_gamma"};
   return names;
 }
 

@@ -21,7 +21,7 @@ const ParameterSchema& Schema() {
   static const ParameterSchema schema = {
       {"wheelset", {"mass", "yaw_inertia"}},
       {"frame", {"mass", "yaw_inertia", "semi_wheelbase"}},
-      {"body", {"mass"}},
+      {"body", {"mass", "bogie_semi_spacing"}},
       {"primary",
        {"lateral_stiffness", "longitudinal_stiffness", "lateral_damping", "longitudinal_damping",
         "semi_spacing"}},
@@ -29,8 +29,24 @@ const ParameterSchema& Schema() {
        {"lateral_stiffness", "longitudinal_stiffness", "lateral_damping", "yaw_damping",
         "semi_spacing"}},
       {"simulation", {"time_step", "duration", "initial_y"}},
+      {"curving", {"radii", "cant", "cant_deficiency", "rail_spacing"}},
   };
   return schema;
+}
+
+// [curving]: every key but rail_spacing required once the section is there, the radii positive
+// (NumberArray refuses an empty list).
+CurvingSettings ReadCurving(const Section& s) {
+  CurvingSettings c;
+  if (!s.exists()) return c;
+  for (const io::NumberAt& r : s.NumberArray("radii")) {
+    if (!(r.value > 0.0)) s.Fail("radii", r.path + " must be positive");
+    c.radii.push_back(r.value);
+  }
+  c.cant = CheckedNumber(s, "cant", true, NAN);
+  c.cant_deficiency = CheckedNumber(s, "cant_deficiency", true, NAN);
+  c.rail_spacing = CheckedNumber(s, "rail_spacing", false, c.rail_spacing);
+  return c;
 }
 
 // Indices into the state: positions 0–5 (y1, ψ1, y2, ψ2, y_f, ψ_f), velocities 6–11.
@@ -52,7 +68,8 @@ BogieParameters ParseBogieParameters(const std::string& toml_text, const std::st
   const toml::table root = file.Parse(toml_text);
   CheckParameterNames(root, file, Schema());
   const Section ws(file, root, "wheelset"), fr(file, root, "frame"), body(file, root, "body"),
-      pri(file, root, "primary"), sec(file, root, "secondary"), sim(file, root, "simulation");
+      pri(file, root, "primary"), sec(file, root, "secondary"), sim(file, root, "simulation"),
+      curving(file, root, "curving");
   auto required = [](const Section& s, std::string_view key) {
     return CheckedNumber(s, key, false, NAN);
   };
@@ -66,6 +83,7 @@ BogieParameters ParseBogieParameters(const std::string& toml_text, const std::st
   p.frame_yaw_inertia = required(fr, "yaw_inertia");
   p.semi_wheelbase = required(fr, "semi_wheelbase");
   p.body_mass = required(body, "mass");
+  p.bogie_semi_spacing = optional(body, "bogie_semi_spacing");
   p.primary_lateral_stiffness = required(pri, "lateral_stiffness");
   p.primary_longitudinal_stiffness = required(pri, "longitudinal_stiffness");
   p.primary_lateral_damping = optional(pri, "lateral_damping");
@@ -80,6 +98,7 @@ BogieParameters ParseBogieParameters(const std::string& toml_text, const std::st
   p.time_step = run.time_step;
   p.duration = run.duration;
   p.initial_y = run.initial_y;
+  p.curving = ReadCurving(curving);
   return p;
 }
 
@@ -96,9 +115,11 @@ State WheelsetOf(const BogieVector& x, int k) {
 // deflection ψ_k − ψ_f (longitudinal springs at ±b1). The frame carries the reactions and the
 // secondary suspension to the body (lateral springs and dampers, longitudinal springs and yaw
 // dampers at ±b2). Masses in kg and mm/s² give N through the factor 1000; N·mm against kg·m²
-// likewise.
+// likewise. In a curve of curvature κ the centre line at x_k lies x_k²κ/2 inwards of the frame
+// centre's tangent and turns by x_k κ, which the primary deflections subtract; every body feels
+// the unbalanced acceleration.
 BogieVector BogieDerivative(const BogieParameters& p, const BogieVector& x,
-                            const ContactLoads (&loads)[2]) {
+                            const ContactLoads (&loads)[2], const BogieTrack& track) {
   const double b1 = p.primary_semi_spacing, b2 = p.secondary_semi_spacing;
   const double k_yaw1 = 2.0 * p.primary_longitudinal_stiffness * b1 * b1;
   const double c_yaw1 = 2.0 * p.primary_longitudinal_damping * b1 * b1;
@@ -108,23 +129,24 @@ BogieVector BogieDerivative(const BogieParameters& p, const BogieVector& x,
   double frame_force = 0.0, frame_moment = 0.0;
   for (int k = 0; k < 2; ++k) {
     const double a = AxlePosition(p, k);
-    const double lateral = x(2 * k) - x(kFrameY) - a * x(kFrameYaw);
+    const double lateral = x(2 * k) - x(kFrameY) - a * x(kFrameYaw) - 0.5 * a * a * track.curvature;
     const double lateral_rate = v(2 * k) - v(kFrameY) - a * v(kFrameYaw);
     const double f =
         -2.0 * (p.primary_lateral_stiffness * lateral + p.primary_lateral_damping * lateral_rate);
-    const double m =
-        -k_yaw1 * (x(2 * k + 1) - x(kFrameYaw)) - c_yaw1 * (v(2 * k + 1) - v(kFrameYaw));
-    d(kVelocities + 2 * k) = 1000.0 * (loads[k].fy + f) / p.wheelset_mass;
+    const double m = -k_yaw1 * (x(2 * k + 1) - x(kFrameYaw) - a * track.curvature) -
+                     c_yaw1 * (v(2 * k + 1) - v(kFrameYaw));
+    d(kVelocities + 2 * k) =
+        1000.0 * (loads[k].fy + f) / p.wheelset_mass + track.unbalanced_acceleration;
     d(kVelocities + 2 * k + 1) = (loads[k].mz + m) / (1000.0 * p.wheelset_yaw_inertia);
     frame_force -= f;
     frame_moment -= m + a * f;
   }
-  frame_force -=
-      2.0 * (p.secondary_lateral_stiffness * x(kFrameY) + p.secondary_lateral_damping * v(kFrameY));
-  frame_moment -=
-      2.0 * b2 * b2 *
-      (p.secondary_longitudinal_stiffness * x(kFrameYaw) + p.secondary_yaw_damping * v(kFrameYaw));
-  d(kVelocities + kFrameY) = 1000.0 * frame_force / p.frame_mass;
+  frame_force -= 2.0 * (p.secondary_lateral_stiffness * (x(kFrameY) - track.body_y) +
+                        p.secondary_lateral_damping * v(kFrameY));
+  frame_moment -= 2.0 * b2 * b2 *
+                  (p.secondary_longitudinal_stiffness * (x(kFrameYaw) - track.body_yaw) +
+                   p.secondary_yaw_damping * v(kFrameYaw));
+  d(kVelocities + kFrameY) = 1000.0 * frame_force / p.frame_mass + track.unbalanced_acceleration;
   d(kVelocities + kFrameYaw) = frame_moment / (1000.0 * p.frame_yaw_inertia);
   return d;
 }

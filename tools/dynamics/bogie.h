@@ -24,6 +24,15 @@
 
 namespace wrc::dynamics {
 
+/// The steady curves of the quasi-static curving study ([curving]): each radius at one cant and
+/// one cant deficiency, which set the speed.
+struct CurvingSettings {
+  std::vector<double> radii;     ///< mm; empty: no curving study.
+  double cant = 0.0;             ///< mm, the outer rail's height over the inner one.
+  double cant_deficiency = 0.0;  ///< mm, the further cant that would balance the speed.
+  double rail_spacing = 1500.0;  ///< mm, between the rails' centres: cant / spacing is its angle.
+};
+
 /// The vehicle: its bogie and the share of the body a bogie carries (tables/
 /// manchester_vehicle.toml cites every value).
 struct BogieParameters {
@@ -43,9 +52,11 @@ struct BogieParameters {
   double secondary_lateral_damping = 0.0;         ///< N·s/mm per side.
   double secondary_yaw_damping = 0.0;             ///< N·s/mm per side, longitudinal (yaw) damper.
   double secondary_semi_spacing = 0.0;            ///< mm, springs and yaw dampers from the centre.
+  double bogie_semi_spacing = 0.0;                ///< mm, bogie centres from the body's centre.
   double initial_y = 0.0;                         ///< mm, leading wheelset's disturbance at t = 0.
   double time_step = 1e-3;                        ///< s.
   double duration = 3.0;                          ///< s.
+  CurvingSettings curving;
 
   /// N on each wheel: half the body, the frame and both wheelsets over four wheels, g = 9.81.
   double WheelLoad() const;
@@ -62,9 +73,21 @@ using BogieMatrix = Eigen::Matrix<double, 12, 12>;
 /// The state of wheelset k (0 leading, 1 trailing) within a bogie state.
 State WheelsetOf(const BogieVector& x, int k);
 
+/// The track under the bogie: straight (the default) or a steady curve, and where the car body
+/// stands over the bogie centre. Each body's y and ψ are taken from the track's centre line and
+/// tangent at its own centre, so a bogie running radially has every coordinate zero.
+struct BogieTrack {
+  /// 1/mm, 1/R. The curve's centre lies on the −y side: the rail at +y is the outer one.
+  double curvature = 0.0;
+  /// mm/s², towards +y in the track plane: V²/R less the cant's share of gravity.
+  double unbalanced_acceleration = 0.0;
+  double body_y = 0.0;    ///< mm, the car body's lateral position over the bogie centre.
+  double body_yaw = 0.0;  ///< rad, the car body's yaw relative to the track there.
+};
+
 /// Time derivative of the bogie state, given the contact loads on each wheelset.
 BogieVector BogieDerivative(const BogieParameters& p, const BogieVector& x,
-                            const ContactLoads (&loads)[2]);
+                            const ContactLoads (&loads)[2], const BogieTrack& track = {});
 
 /// The contact linearised about centred running: the derivatives ∂(F_y, M_z)/∂(y, ψ, vy, vyaw)
 /// at the speed `speed` (mm/s), as LinearisedLoads gives them. Creepages depend on the velocities

@@ -71,10 +71,12 @@ double RollCurve::operator()(double y) const {
 }
 
 ContactLoads AssembleLoads(const double (&force)[2][3], const double (&moment)[2][3],
-                           const double (&origin)[2][2], double y) {
+                           const double (&t_gamma)[2], const double (&origin)[2][2], double y) {
   ContactLoads loads;
   double fx = 0.0, mz_origin = 0.0;
   for (int side : kSides) {
+    const double field = origin[side][0] < 0.0 ? -1.0 : 1.0;
+    loads.wheel[side] = {field * force[side][1], force[side][2], t_gamma[side]};
     fx -= force[side][0];
     loads.fy -= force[side][1];
     // Moment on the wheelset about the track origin, −Σ (M + o × F), z component.
@@ -139,14 +141,15 @@ ContactLoads TableForces::operator()(const State& s, double velocity) const {
   w.fz[0] = w.fz[1] = geometry_.wheel_load;
   wrc_wheelset_result r;
   const int flags = wheelset_.eval(w, r);  // throws wrc::TableError on errors
-  double force[2][3], moment[2][3];
+  double force[2][3], moment[2][3], t_gamma[2];
   for (int side : kSides) {
     for (int i = 0; i < 3; ++i) {
       force[side][i] = r.wheel[side].force[i];
       moment[side][i] = r.wheel[side].moment[i];
     }
+    t_gamma[side] = r.wheel[side].t_gamma;  // NaN when the table has no t_gamma output
   }
-  ContactLoads loads = AssembleLoads(force, moment, geometry_.origin, s.y);
+  ContactLoads loads = AssembleLoads(force, moment, t_gamma, geometry_.origin, s.y);
   loads.flags = flags;
   return loads;
 }
@@ -194,7 +197,7 @@ double SolverForces::Height(int side, double y, double roll) {
 
 ContactLoads SolverForces::operator()(const State& s, double velocity) {
   const double roll = roll_(s.y);
-  double force[2][3], moment[2][3];
+  double force[2][3], moment[2][3], t_gamma[2];
   for (int side : kSides) {
     WheelRailOptions options;
     options.z_guess = z_guess_[side];
@@ -209,8 +212,9 @@ ContactLoads SolverForces::operator()(const State& s, double velocity) {
       force[side][i] = r.force_T(i);
       moment[side][i] = r.moment_T(i);
     }
+    t_gamma[side] = TGamma(r);
   }
-  return AssembleLoads(force, moment, geometry_.origin, s.y);
+  return AssembleLoads(force, moment, t_gamma, geometry_.origin, s.y);
 }
 
 ContactGeometry SceneGeometry(const Case& base, double wheel_load) {

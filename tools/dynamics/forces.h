@@ -44,9 +44,10 @@ class RollCurve {
 };
 
 /// Per-wheel contact results assembled into the resultant about the wheelset centre at
-/// lateral position y. force/moment: on the rail, moments about the rail origin o = (o_y, o_z).
+/// lateral position y, and each wheel's Y, Q and Tγ. force/moment: on the rail, moments about
+/// the rail origin o = (o_y, o_z); a rail's field side is the side of its origin.
 ContactLoads AssembleLoads(const double (&force)[2][3], const double (&moment)[2][3],
-                           const double (&origin)[2][2], double y);
+                           const double (&t_gamma)[2], const double (&origin)[2][2], double y);
 
 /// Geometry both contact sources need.
 struct ContactGeometry {

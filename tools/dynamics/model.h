@@ -53,12 +53,21 @@ struct State {
   double vyaw = 0.0;  ///< rad/s.
 };
 
+/// One wheel's contact as the track sees it, the quantities of curving and wear assessment.
+struct WheelContact {
+  double lateral = 0.0;   ///< N, Y: on the rail, positive towards its field side.
+  double vertical = 0.0;  ///< N, Q: on the rail, positive downwards.
+  double t_gamma = 0.0;   ///< N, Tγ: frictional power per distance rolled.
+};
+
 /// What a force source returns: the resultant of both contacts on the wheelset, about its
-/// centre, in track coordinates.
+/// centre, in track coordinates, and each wheel's contact (zero where a source has no wheels,
+/// as the linear models).
 struct ContactLoads {
-  double fy = 0.0;  ///< N.
-  double mz = 0.0;  ///< N·mm.
-  int flags = 0;    ///< The runtime's WRC_FLAG_* bits (0 for exact solves).
+  double fy = 0.0;        ///< N.
+  double mz = 0.0;        ///< N·mm.
+  int flags = 0;          ///< The runtime's WRC_FLAG_* bits (0 for exact solves).
+  WheelContact wheel[2];  ///< [WRC_LEFT], [WRC_RIGHT].
 };
 
 /// Contact forces on the wheelset at a state and speed (mm/s). Throws on failure.

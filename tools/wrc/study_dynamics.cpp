@@ -21,6 +21,7 @@
 
 #include "tools/dynamics/analysis.h"
 #include "tools/dynamics/bogie.h"
+#include "tools/dynamics/curving.h"
 #include "tools/dynamics/forces.h"
 #include "tools/dynamics/model.h"
 #include "tools/wrc/commands.h"
@@ -155,6 +156,10 @@ class TableStudy {
   void WriteLinearSummary(std::ostream& md) const;
   void AnalyseVehicle();
   void WriteVehicleSummary(std::ostream& md) const;
+  void CurveVehicle();
+  void WriteCurvingCsv() const;
+  void WriteCurvingPlot() const;
+  void WriteCurvingSummary(std::ostream& md) const;
 
   const DynamicsOptions& options_;
   fs::path out_;
@@ -191,6 +196,14 @@ class TableStudy {
     std::vector<double> speeds, hertz, damping;  // m/s, Hz, 1/s of the dominant eigenvalue
   };
   std::vector<VehicleStability> vehicle_stability_;
+  // The bogie's quasi-static curving on each source, per curve of the vehicle file.
+  struct Curving {
+    dynamics::CurveCase curve;
+    dynamics::CurvingResult table;
+    std::optional<dynamics::CurvingResult> solver;
+    std::string failure;  // why the solver gave no equilibrium
+  };
+  std::vector<Curving> curving_;
   double solver_roll_seconds_ = 0.0;
   long solver_roll_solves_ = 0;
   std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
@@ -483,6 +496,166 @@ void TableStudy::WriteVehicleSummary(std::ostream& md) const {
   md << "\n";
 }
 
+// ---- quasi-static curving ------------------------------------------------------------------
+
+// The wheels of a curving result in the order a curving table lists them, each with the side
+// (WRC_LEFT / WRC_RIGHT) it is on: the outer rail is the one at +y (curving.h).
+struct CurvingWheel {
+  const char* name;
+  int wheelset;
+  bool outer;
+};
+constexpr CurvingWheel kCurvingWheels[4] = {{"leading outer", 0, true},
+                                            {"leading inner", 0, false},
+                                            {"trailing outer", 1, true},
+                                            {"trailing inner", 1, false}};
+
+int SideOf(const dynamics::ContactGeometry& g, bool outer) {
+  const int plus = g.origin[WRC_RIGHT][0] > 0.0 ? WRC_RIGHT : WRC_LEFT;
+  return outer ? plus : 1 - plus;
+}
+
+// Each curve of the vehicle file on the table, then on the solver (the curves side by side, one
+// thread each: an equilibrium is a few hundred solves).
+void TableStudy::CurveVehicle() {
+  for (const double radius : vehicle_->curving.radii) {
+    Curving c{dynamics::CurveCase::WithDeficiency(radius, vehicle_->curving), {}, {}, ""};
+    const dynamics::ForceSource table = [this](const dynamics::State& s, double v) {
+      return (*table_forces_)(s, v);
+    };
+    const dynamics::ForceSource forces[2] = {table, table};
+    c.table = dynamics::SolveCurving(*vehicle_, c.curve, forces);
+    curving_.push_back(c);
+  }
+  if (options_.no_solver) return;
+  PrepareSolver();
+  std::atomic<std::size_t> next{0};
+  gen::WorkerThreads threads(
+      static_cast<int>(std::min<std::size_t>(curving_.size(), 2)),
+      [this, &next]() {
+        for (std::size_t k = next++; k < curving_.size(); k = next++) {
+          Curving& c = curving_[k];
+          dynamics::SolverForces leading = *solver_forces_, trailing = *solver_forces_;
+          const dynamics::ForceSource forces[2] = {
+              [&leading](const dynamics::State& s, double v) { return leading(s, v); },
+              [&trailing](const dynamics::State& s, double v) { return trailing(s, v); }};
+          try {
+            c.solver = dynamics::SolveCurving(*vehicle_, c.curve, forces);
+          } catch (const InputError& e) {
+            c.failure = e.what();
+          }
+        }
+      },
+      "wrc study dynamics");
+  threads.Join();
+  for (const Curving& c : curving_) {
+    if (!c.failure.empty()) {
+      std::cerr << "wrc study dynamics: warning: the solver's curving at R = "
+                << Fixed(c.curve.radius / 1000.0, 0) << " m stopped: " << c.failure << "\n";
+    }
+  }
+}
+
+void TableStudy::WriteCurvingCsv() const {
+  std::ofstream csv(out_ / "curving.csv");
+  csv << "radius_m,speed_m_s,source,converged,residual_n,evaluations,seconds,y1_mm,yaw1_rad,y2_mm,"
+         "yaw2_rad,frame_y_mm,frame_yaw_rad,wheel,lateral_y_n,vertical_q_n,y_over_q,t_gamma_n\n";
+  csv.precision(9);
+  for (const Curving& c : curving_) {
+    for (const auto& [source, r] :
+         {std::pair{"table", &c.table}, std::pair{"solver", c.solver ? &*c.solver : nullptr}}) {
+      if (r == nullptr) continue;
+      for (const CurvingWheel& w : kCurvingWheels) {
+        const dynamics::WheelContact& wc = r->loads[w.wheelset].wheel[SideOf(geometry_, w.outer)];
+        csv << c.curve.radius / 1000.0 << ',' << c.curve.speed / 1000.0 << ',' << source << ','
+            << r->converged << ',' << r->residual << ',' << r->evaluations << ',' << r->seconds;
+        for (int i = 0; i < 6; ++i) csv << ',' << r->position(i);
+        csv << ',' << w.name << ',' << wc.lateral << ',' << wc.vertical << ','
+            << wc.lateral / wc.vertical << ',' << wc.t_gamma << '\n';
+      }
+    }
+  }
+}
+
+void TableStudy::WriteCurvingPlot() const {
+  std::ofstream gp(out_ / "curving.gp");
+  gp << "set terminal pngcairo size 1000,800 font ',10'\nset output 'curving.png'\n"
+     << "set datafile separator ','\nset grid\nset key outside right\nset logscale x\n"
+     << "set xlabel 'curve radius, m'\n"
+     << "set multiplot layout 2,1 title 'The bogie in steady curves at "
+     << Fixed(vehicle_->curving.cant_deficiency, 0) << " mm cant deficiency (" << table_name_
+     << "): table (lines) and solver (points)' noenhanced\n";
+  // One panel: a column of curving.csv against the radius for each wheel, both sources.
+  const auto panel = [&gp](const std::string& label, int column, double scale) {
+    gp << "set ylabel '" << label << "'\nplot ";
+    for (int w = 0; w < 4; ++w) {
+      const std::string name = kCurvingWheels[w].name;
+      const std::string pick = "(strcol(14) eq '" + name + "' && strcol(3) eq '";
+      gp << (w ? ", " : "") << "'curving.csv' skip 1 using " << pick << "table' ? $1 : 1/0):($"
+         << column << "*" << scale << ") with linespoints lc " << w + 1 << " lw 2 title '" << name
+         << "', '' skip 1 using " << pick << "solver' ? $1 : 1/0):($" << column << "*" << scale
+         << ") with points lc " << w + 1 << " pt 6 ps 2 notitle";
+    }
+    gp << "\n";
+  };
+  panel("Y/Q", 17, 1.0);
+  // Tγ where the table has it (a table made without the t_gamma output gives NaN).
+  if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma))
+    panel("T{/Symbol g}, N", 18, 1.0);
+  gp << "unset multiplot\n";
+  gp.close();
+  if (!RunGnuplotScript("curving.gp", out_)) {
+    std::cerr << "wrc study dynamics: gnuplot failed for curving.gp\n";
+  }
+}
+
+void TableStudy::WriteCurvingSummary(std::ostream& md) const {
+  if (curving_.empty()) return;
+  const dynamics::CurvingSettings& s = vehicle_->curving;
+  const double load = vehicle_->WheelLoad();
+  md << "## The vehicle's bogie in steady curves\n\nEach curve at " << Fixed(s.cant, 0)
+     << " mm cant and " << Fixed(s.cant_deficiency, 0)
+     << " mm cant deficiency: the equilibrium of the bogie's lateral and yaw positions with the "
+        "contact forces of each source (curving.csv, curving.png). ψ1 is the leading wheelset's "
+        "angle of attack; Y is the wheel's lateral force on the rail, positive towards its field "
+        "side, Q its vertical force, Tγ its frictional power; differences in Y and Q are in % of "
+        "the wheel load ("
+     << Fixed(load, 0) << " N), in Tγ in % of the solver's.\n\n"
+     << "| R, m | V, m/s | source | y1, mm | ψ1, mrad | y2, mm | ψ2, mrad | frame y, mm | frame ψ, "
+        "mrad | evaluations | s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Curving& c : curving_) {
+    for (const auto& [source, r] :
+         {std::pair{"table", &c.table}, std::pair{"solver", c.solver ? &*c.solver : nullptr}}) {
+      if (r == nullptr) continue;
+      md << "| " << Fixed(c.curve.radius / 1000.0, 0) << " | " << Fixed(c.curve.speed / 1000.0, 1)
+         << " | " << source << (r->converged ? "" : " (not converged)");
+      for (int i = 0; i < 6; ++i)
+        md << " | " << Fixed(i % 2 ? 1e3 * r->position(i) : r->position(i), 3);
+      md << " | " << r->evaluations << " | " << Fixed(r->seconds, 2) << " |\n";
+    }
+  }
+  md << "\n| R, m | wheel | Y table, N | Y solver, N | ΔY, % | Q table, N | Q solver, N | ΔQ, % | "
+        "Y/Q table | Y/Q solver | Tγ table, N | Tγ solver, N | ΔTγ, % |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Curving& c : curving_) {
+    if (!c.solver) continue;
+    for (const CurvingWheel& w : kCurvingWheels) {
+      const int side = SideOf(geometry_, w.outer);
+      const dynamics::WheelContact& t = c.table.loads[w.wheelset].wheel[side];
+      const dynamics::WheelContact& v = c.solver->loads[w.wheelset].wheel[side];
+      md << "| " << Fixed(c.curve.radius / 1000.0, 0) << " | " << w.name << " | "
+         << Fixed(t.lateral, 0) << " | " << Fixed(v.lateral, 0) << " | "
+         << Fixed(100.0 * (t.lateral - v.lateral) / load, 2) << " | " << Fixed(t.vertical, 0)
+         << " | " << Fixed(v.vertical, 0) << " | "
+         << Fixed(100.0 * (t.vertical - v.vertical) / load, 2) << " | "
+         << Fixed(t.lateral / t.vertical, 4) << " | " << Fixed(v.lateral / v.vertical, 4) << " | "
+         << Fixed(t.t_gamma, 1) << " | " << Fixed(v.t_gamma, 1) << " | "
+         << Fixed(100.0 * (t.t_gamma - v.t_gamma) / v.t_gamma, 2) << " |\n";
+    }
+  }
+  md << "\n![curving](curving.png)\n\n";
+}
+
 void TableStudy::WriteSpeedsCsv() const {
   std::ofstream csv(out_ / "speeds.csv");
   csv << "source,speed_m_s,frequency_hz,growth_rate_1_s,max_abs_y_mm,flags,seconds,steps\n";
@@ -535,6 +708,7 @@ void TableStudy::WriteSummary() const {
        << " mm of the leading wheelset; its trajectory is the one measured.\n\n";
     WriteLinearSummary(md);
     WriteVehicleSummary(md);
+    WriteCurvingSummary(md);
     if (!options_.linear_only) WriteRunsSummary(md);
     return;
   }
@@ -609,6 +783,11 @@ int TableStudy::Run() {
   fs::create_directories(out_);
   if (!options_.no_solver) Linearise();
   if (vehicle_ && !linear_.empty()) AnalyseVehicle();
+  if (vehicle_ && !options_.linear_only && !vehicle_->curving.radii.empty()) {
+    CurveVehicle();
+    WriteCurvingCsv();
+    WriteCurvingPlot();
+  }
   if (!options_.linear_only) {
     SweepTable();
     BisectTable();

@@ -1,0 +1,137 @@
+// Quasi-static curving: the equilibrium against the closed-form solution of a bogie without
+// primary yaw stiffness on linear creep, and against the balance of the whole bogie's lateral
+// forces and yaw moments (the unbalanced force of every body and the car body's share) with
+// saturating creep forces in a curve with cant deficiency.
+
+#include "tools/dynamics/curving.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "tools/dynamics/forces.h"
+#include "wrc/core/errors.h"
+
+namespace wrc::dynamics {
+namespace {
+
+BogieParameters Vehicle() {
+  return LoadBogieParameters(std::string(WRC_SOURCE_DIR) + "/tables/manchester_vehicle.toml");
+}
+
+// Kalker-size creep coefficients of a 54.5 kN contact, conicity of a new S1002 profile.
+LinearContact Creep(double gravity_stiffness) {
+  LinearContact c;
+  c.f11 = 8.0e6;
+  c.f22 = 7.2e6;
+  c.conicity = 0.2;
+  c.semi_spacing = 750.0;
+  c.nominal_radius = 460.0;
+  c.gravity_stiffness = gravity_stiffness;
+  return c;
+}
+
+// Without primary yaw stiffness and with the cant balancing the speed, each wheelset rolls on
+// its pure-rolling line y = b·r0/(λR), where its longitudinal creepages vanish; the frame
+// centres the primary's lateral forces between them, its yaw set by the car body's chord
+// against the primary's lateral springs acting over the wheelbase (derivation: the six
+// equations solved by hand, with k1 the primary lateral stiffness per axlebox).
+TEST(Curving, WithoutPrimaryYawStiffnessWheelsetsRollOnThePureRollingLine) {
+  BogieParameters p = Vehicle();
+  p.primary_longitudinal_stiffness = 0.0;
+  const LinearContact c = Creep(0.0);
+  CurveCase curve;
+  curve.radius = 600e3;
+  curve.speed = 20000.0;
+  curve.cant = curve.speed * curve.speed / curve.radius * curve.rail_spacing / 9810.0;
+  ASSERT_NEAR(curve.UnbalancedAcceleration(), 0.0, 1e-9);
+  const ForceSource forces[2] = {c, c};
+  const CurvingResult r = SolveCurving(p, curve, forces);
+  ASSERT_TRUE(r.converged) << r.residual;
+
+  const double kappa = 1.0 / curve.radius, a = p.semi_wheelbase;
+  const double y = c.semi_spacing * c.nominal_radius / (c.conicity * curve.radius);
+  const double k1 = p.primary_lateral_stiffness;
+  const double k_yaw2 = 2.0 * p.secondary_longitudinal_stiffness * p.secondary_semi_spacing *
+                        p.secondary_semi_spacing;
+  const double frame_yaw = k_yaw2 * p.bogie_semi_spacing * kappa / (k_yaw2 + 4.0 * k1 * a * a);
+  const double lateral = 2.0 * k1 * a * frame_yaw;  // primary force on the leading wheelset
+  // 10⁻⁶ mm and 10⁻⁹ rad: the residual's 1 N over stiffnesses of 10³–10⁷ N/mm.
+  EXPECT_NEAR(r.position(0), y, 1e-6);
+  EXPECT_NEAR(r.position(2), y, 1e-6);
+  EXPECT_NEAR(r.position(4), y - 0.5 * a * a * kappa, 1e-6);
+  EXPECT_NEAR(r.position(5), frame_yaw, 1e-9);
+  EXPECT_NEAR(r.position(1), -lateral / (2.0 * c.f22), 1e-9);
+  EXPECT_NEAR(r.position(3), lateral / (2.0 * c.f22), 1e-9);
+}
+
+// Creep forces that saturate at 40 kN per wheelset (as friction does): the equilibrium must
+// still balance the bogie as a whole.
+struct SaturatingCreep {
+  LinearContact linear;
+  ContactLoads operator()(const State& s, double velocity) const {
+    ContactLoads l = linear(s, velocity);
+    constexpr double kLimit = 40000.0;  // N
+    l.fy = kLimit * std::tanh(l.fy / kLimit);
+    l.mz = kLimit * linear.semi_spacing * std::tanh(l.mz / (kLimit * linear.semi_spacing));
+    return l;
+  }
+};
+
+TEST(Curving, TheWholeBogieBalancesItsUnbalancedForceAndYawMoment) {
+  const BogieParameters p = Vehicle();
+  ASSERT_EQ(p.curving.radii.size(), 3u);
+  const SaturatingCreep creep{Creep(500.0)};
+  const ForceSource forces[2] = {creep, creep};
+  for (const double radius : p.curving.radii) {
+    const CurveCase curve = CurveCase::WithDeficiency(radius, p.curving);
+    EXPECT_NEAR(curve.UnbalancedAcceleration(), 9810.0 * 100.0 / 1500.0, 1e-9);
+    const CurvingResult r = SolveCurving(p, curve, forces);
+    ASSERT_TRUE(r.converged) << radius << ": " << r.residual;
+    // Lateral: the creep forces carry every body's unbalanced force, the car body's half too.
+    const double mass = 2.0 * p.wheelset_mass + p.frame_mass + 0.5 * p.body_mass;
+    const double unbalanced = mass * curve.UnbalancedAcceleration() / 1000.0;  // N
+    EXPECT_NEAR(r.loads[0].fy + r.loads[1].fy + unbalanced, 0.0, 6.0 * kCurvingResidual);
+    // Yaw about the bogie centre: the contact's moments against the secondary yaw springs
+    // turned by the car body's chord.
+    const double a = p.semi_wheelbase;
+    const double contact = r.loads[0].mz + r.loads[1].mz + a * (r.loads[0].fy - r.loads[1].fy);
+    const double secondary = -2.0 * p.secondary_longitudinal_stiffness * p.secondary_semi_spacing *
+                             p.secondary_semi_spacing *
+                             (r.position(5) - p.bogie_semi_spacing / radius);
+    EXPECT_NEAR(contact + secondary, 0.0, 6.0 * kCurvingResidual * a);
+    // Outwards in the curve, and the tighter the further.
+    EXPECT_GT(r.position(0), 0.0) << radius;
+  }
+}
+
+TEST(Curving, CurvingSectionErrorsNameTheKey) {
+  const auto message = [](const std::string& curving) {
+    std::string text =
+        "[wheelset]\nmass = 1.0\nyaw_inertia = 1.0\n[frame]\nmass = 1.0\n"
+        "yaw_inertia = 1.0\nsemi_wheelbase = 1.0\n[body]\nmass = 1.0\n"
+        "[primary]\nlateral_stiffness = 1.0\nlongitudinal_stiffness = 1.0\n"
+        "semi_spacing = 1.0\n[secondary]\nlateral_stiffness = 1.0\n"
+        "longitudinal_stiffness = 1.0\nsemi_spacing = 1.0\n[curving]\n" +
+        curving;
+    try {
+      ParseBogieParameters(text, "v.toml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("radii = [600e3]\ncant = 150.0\ncant_deficiency = 0.0\n"), "no error");
+  EXPECT_NE(message("radii = [600e3, -1.0]\ncant = 1.0\ncant_deficiency = 0.0\n")
+                .find("curving.radii[1] must be positive"),
+            std::string::npos);
+  const std::string empty = message("radii = []\ncant = 1.0\ncant_deficiency = 0.0\n");
+  EXPECT_NE(empty.find("curving.radii = []: must not be empty"), std::string::npos) << empty;
+  EXPECT_NE(message("radii = [600e3]\ncant = 1.0\n").find("curving.cant_deficiency"),
+            std::string::npos);
+  EXPECT_NE(message("radius = [600e3]\n").find("did you mean radii"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace wrc::dynamics

@@ -1,0 +1,158 @@
+// Quasi-static curving of the bogie (curving.h).
+
+#include "tools/dynamics/curving.h"
+
+#include <unsupported/Eigen/NonLinearOptimization>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace wrc::dynamics {
+namespace {
+
+// Standard gravity, mm/s².
+constexpr double kGravity = 9810.0;
+
+// Central-difference steps of the contact's Jacobian: wide enough that the solver's convergence
+// noise (about 10⁻⁶ of the load) stays below 10⁻³ of a difference, narrow against the flange
+// climb's 0.1 mm width. The Jacobian only steers the iteration; the equilibrium is where the
+// residual vanishes, whatever steps it took.
+constexpr double kStepY = 0.02;    // mm
+constexpr double kStepYaw = 2e-5;  // rad
+
+// The unknowns scaled to similar sizes: lateral positions in mm, yaw angles in mrad.
+constexpr double kYawScale = 1000.0;
+
+using Vector = Eigen::VectorXd;
+using Matrix = Eigen::MatrixXd;
+
+// The bogie's equilibrium equations with the contact of both wheelsets: forces in N and moments
+// over the semi-wheelbase in N, so that one tolerance serves both.
+class Equations {
+ public:
+  Equations(const BogieParameters& p, const CurveCase& curve, const ForceSource (&forces)[2])
+      : p_(p), curve_(curve), forces_(forces) {}
+
+  // Powell's hybrid method's interface: the residual and its Jacobian.
+  int operator()(const Vector& u, Vector& residual) {
+    ContactLoads loads[2];
+    Contact(u, loads);
+    residual = Residual(u, loads);
+    return 0;
+  }
+  int df(const Vector& u, Matrix& jacobian) {
+    const ContactLoads none[2];
+    const Vector base = Residual(u, none);
+    jacobian.resize(6, 6);
+    for (int j = 0; j < 6; ++j) jacobian.col(j) = Residual(u + Vector::Unit(6, j), none) - base;
+    for (int k = 0; k < 2; ++k) AddContactJacobian(u, k, jacobian);
+    return 0;
+  }
+
+  BogieVector State(const Vector& u) const {
+    BogieVector x = BogieVector::Zero();
+    for (int i = 0; i < 6; ++i) x(i) = i % 2 == 0 ? u(i) : u(i) / kYawScale;
+    return x;
+  }
+  void Contact(const Vector& u, ContactLoads (&loads)[2]) {
+    const BogieVector x = State(u);
+    for (int k = 0; k < 2; ++k) loads[k] = forces_[k](Wheelset(x, k), curve_.speed);
+    ++evaluations_;
+  }
+  BogieTrack Track(const Vector& u) const {
+    BogieTrack track;
+    track.curvature = 1.0 / curve_.radius;
+    track.unbalanced_acceleration = curve_.UnbalancedAcceleration();
+    // The body in steady state: its secondary springs carry its share of the unbalanced force
+    // (two per bogie), and it lies along the chord between the bogie centres.
+    const double share = 0.5 * p_.body_mass * track.unbalanced_acceleration / 1000.0;  // N
+    track.body_y = u(4) + share / (2.0 * p_.secondary_lateral_stiffness);
+    track.body_yaw = p_.bogie_semi_spacing * track.curvature;
+    return track;
+  }
+  Vector Residual(const Vector& u, const ContactLoads (&loads)[2]) const {
+    const BogieVector d = BogieDerivative(p_, State(u), loads, Track(u));
+    const double a = p_.semi_wheelbase;
+    Vector r(6);
+    for (int k = 0; k < 2; ++k) {
+      r(2 * k) = d(6 + 2 * k) * p_.wheelset_mass / 1000.0;
+      r(2 * k + 1) = d(7 + 2 * k) * p_.wheelset_yaw_inertia * 1000.0 / a;
+    }
+    r(4) = d(10) * p_.frame_mass / 1000.0;
+    r(5) = d(11) * p_.frame_yaw_inertia * 1000.0 / a;
+    return r;
+  }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  // The wheelset turns with the track: its yaw rate is the curve's, −V/R.
+  dynamics::State Wheelset(const BogieVector& x, int k) const {
+    dynamics::State s = WheelsetOf(x, k);
+    s.vyaw = -curve_.speed / curve_.radius;
+    return s;
+  }
+  // ∂(F_y, M_z/a)/∂(y_k, ψ_k) of wheelset k's contact, by central differences.
+  void AddContactJacobian(const Vector& u, int k, Matrix& jacobian) {
+    const double step[2] = {kStepY, kStepYaw * kYawScale};
+    for (int j = 0; j < 2; ++j) {
+      Vector plus = u, minus = u;
+      plus(2 * k + j) += step[j];
+      minus(2 * k + j) -= step[j];
+      const BogieVector xp = State(plus), xm = State(minus);
+      const ContactLoads lp = forces_[k](Wheelset(xp, k), curve_.speed);
+      const ContactLoads lm = forces_[k](Wheelset(xm, k), curve_.speed);
+      ++evaluations_;
+      jacobian(2 * k, 2 * k + j) += (lp.fy - lm.fy) / (2.0 * step[j]);
+      jacobian(2 * k + 1, 2 * k + j) += (lp.mz - lm.mz) / (2.0 * step[j] * p_.semi_wheelbase);
+    }
+  }
+
+  const BogieParameters& p_;
+  const CurveCase& curve_;
+  const ForceSource (&forces_)[2];
+  int evaluations_ = 0;
+};
+
+}  // namespace
+
+CurveCase CurveCase::WithDeficiency(double radius, const CurvingSettings& settings) {
+  CurveCase c;
+  c.radius = radius;
+  c.cant = settings.cant;
+  c.rail_spacing = settings.rail_spacing;
+  c.speed = std::sqrt(radius * kGravity * (settings.cant + settings.cant_deficiency) /
+                      settings.rail_spacing);
+  return c;
+}
+
+double CurveCase::UnbalancedAcceleration() const {
+  return speed * speed / radius - kGravity * cant / rail_spacing;
+}
+
+CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
+                           const ForceSource (&forces)[2]) {
+  const auto start = std::chrono::steady_clock::now();
+  Equations equations(p, curve, forces);
+  Eigen::HybridNonLinearSolver<Equations> solver(equations);
+  solver.parameters.xtol = 1e-12;  // relative step: far below the residual tolerance's reach
+  solver.parameters.maxfev = 200;
+  Vector u = Vector::Zero(6);
+  solver.solve(u);
+
+  CurvingResult result;
+  ContactLoads loads[2];
+  equations.Contact(u, loads);
+  const Vector residual = equations.Residual(u, loads);
+  const BogieVector x = equations.State(u);
+  result.position = x.head<6>();
+  for (int k = 0; k < 2; ++k) result.loads[k] = loads[k];
+  result.body_y = equations.Track(u).body_y;
+  result.residual = residual.cwiseAbs().maxCoeff();
+  result.converged = result.residual < kCurvingResidual;
+  result.evaluations = equations.evaluations();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace wrc::dynamics
