@@ -153,6 +153,21 @@ TEST(WheelsetDynamics, LinearisedLoadsAreTheLinearContactsCoefficients) {
   }
 }
 
+// A roll proportional to y, roll = c·y, is found as the root of the wheels' height mismatch and
+// interpolated exactly; the wheelset position whose wheels sit at w on their rails is then
+// w / (1 − r0·c).
+TEST(WheelsetDynamics, RollCurveGivesTheWheelsetPositionOfAWheelPosition) {
+  constexpr double c = 1e-4, r0 = 460.0;
+  const RollCurve roll(
+      [](int side, double y, double r) { return side == WRC_RIGHT ? r - c * y : 0.0; }, 10.0, 0.25,
+      -0.01, 0.01);
+  EXPECT_EQ(roll.clamped(), 0);
+  EXPECT_NEAR(roll(3.3), c * 3.3, 1e-12);
+  for (const double w : {0.25, -0.25, 1.0, 4.0}) {
+    EXPECT_NEAR(roll.WheelsetY(w, r0), w / (1.0 - r0 * c), 1e-9) << w;
+  }
+}
+
 TEST(WheelsetDynamics, ParameterFileErrorsNameTheKey) {
   const auto message = [](const std::string& text) {
     try {

@@ -70,6 +70,17 @@ double RollCurve::operator()(double y) const {
   return sign * ((1.0 - t) * roll_[k - 1] + t * roll_[k]);
 }
 
+double RollCurve::WheelsetY(double wheel_y, double nominal_radius) const {
+  // Fixed point y = wheel_y + r0·roll(y): a contraction, as r0·|roll'| is a few hundredths.
+  double y = wheel_y;
+  for (int i = 0; i < 50; ++i) {
+    const double next = wheel_y + nominal_radius * (*this)(y);
+    if (std::fabs(next - y) < 1e-12) return next;
+    y = next;
+  }
+  return y;
+}
+
 ContactLoads AssembleLoads(const double (&force)[2][3], const double (&moment)[2][3],
                            const double (&t_gamma)[2], const double (&origin)[2][2], double y) {
   ContactLoads loads;
@@ -104,7 +115,7 @@ TableForces::TableForces(const wrc::Table& table, const ContactGeometry& geometr
     roll_max = table.axis_values(a).back();
   }
   roll_ = RollCurve([this](int side, double y, double roll) { return Height(side, y, roll); },
-                    y_max, 0.25, roll_min, roll_max);
+                    y_max, kRollCurveStep, roll_min, roll_max);
 }
 
 double TableForces::Height(int side, double y, double roll) const {
@@ -159,7 +170,7 @@ ContactLoads TableForces::operator()(const State& s, double velocity) const {
 SolverForces::SolverForces(Case base, const ContactGeometry& geometry, double y_max)
     : base_(std::move(base)), geometry_(geometry) {
   roll_ = RollCurve([this](int side, double y, double roll) { return Height(side, y, roll); },
-                    y_max, std::min(0.5, y_max), -0.01, 0.01);
+                    y_max, std::min(kRollCurveStep, y_max), -0.01, 0.01);
 }
 
 Case SolverForces::Wheel(int side, const State& s, double roll, double velocity) const {

@@ -34,6 +34,9 @@ class RollCurve {
   RollCurve(const std::function<double(int, double, double)>& height, double y_max, double dy,
             double roll_min, double roll_max);
   double operator()(double y) const;
+  /// The wheelset position y at which each wheel's lateral position on its rail, y − r0·roll(y),
+  /// is `wheel_y` (mm): the roll adds about 2 % to a step in y on the Manchester pair.
+  double WheelsetY(double wheel_y, double nominal_radius) const;
   int clamped() const { return clamped_; }
   const std::vector<double>& y() const { return y_; }
   const std::vector<double>& roll() const { return roll_; }
@@ -42,6 +45,11 @@ class RollCurve {
   std::vector<double> y_, roll_;  // y >= 0
   int clamped_ = 0;
 };
+
+/// The y spacing of both sources' roll curves, mm: the same for both, so that the linearised
+/// contact (whose y step is 0.25 mm) sees the same secant of the roll in each; a coarser solver
+/// curve put ∂Fy/∂y at centred running 8 % apart on the Manchester vehicle's table.
+constexpr double kRollCurveStep = 0.25;
 
 /// Per-wheel contact results assembled into the resultant about the wheelset centre at
 /// lateral position y, and each wheel's Y, Q and Tγ. force/moment: on the rail, moments about
@@ -62,7 +70,7 @@ class TableForces {
  public:
   /// Builds the roll curve from the table's z output. Throws InputError when the table cannot
   /// serve the model (no fz axis or fixed load other than the wheel load, no z output).
-  /// The roll curve spans |y| <= y_max (mm).
+  /// The roll curve spans |y| <= y_max (mm), every kRollCurveStep.
   TableForces(const wrc::Table& table, const ContactGeometry& geometry, double y_max = 10.0);
   ContactLoads operator()(const State& s, double velocity) const;
   const RollCurve& roll_curve() const { return roll_; }
@@ -80,7 +88,7 @@ class TableForces {
 /// wheelset height of each warm-started from its previous solve.
 class SolverForces {
  public:
-  /// The roll curve spans |y| <= y_max (mm), every 0.5 mm.
+  /// The roll curve spans |y| <= y_max (mm), every kRollCurveStep.
   SolverForces(Case base, const ContactGeometry& geometry, double y_max = 10.0);
   ContactLoads operator()(const State& s, double velocity);
   const RollCurve& roll_curve() const { return roll_; }

@@ -54,6 +54,9 @@ struct DynamicsOptions {
   std::string vehicle;         // a vehicle file: the bogie's linear stability from both sources
 };
 
+// The linearised contact's step in each wheel's lateral position on its rail, mm.
+constexpr double kWheelStep = 0.25;
+
 // Extrema before this are the transient of the initial disturbance, not hunting.
 constexpr double kSettle = 0.1;  // s
 
@@ -389,16 +392,22 @@ void TableStudy::RunSolver() {
 }
 
 // ∂(F_y, M_z)/∂(y, ψ, vy, vyaw) of both sources at y = 0 and at the initial disturbance.
-// Steps: 0.25 mm in y, and 1e-4 of creepage in the others (the creep forces bend within about
-// 4e-4, hunting at 1 mm lives at about 1e-4), vyaw's step giving 1e-4 at the nominal b.
+// Steps: 0.25 mm in each wheel's lateral position on its rail, and 1e-4 of creepage in the
+// others (the creep forces bend within about 4e-4, hunting at 1 mm lives at about 1e-4), vyaw's
+// step giving 1e-4 at the nominal b. The y step is the wheel's, not the wheelset's: through the
+// roll a wheelset step of 0.25 mm moves each wheel by 0.256 mm on the Manchester pair, where a
+// wheel's fy falls by 11 N between 0.25 and 0.256 mm (solver, 54.5 kN) and rises by 200 N to
+// 1 mm: a difference over 0.256 mm samples structure finer than any table's nodes, and the
+// slope target ([table.refine.slope]) places its nodes at the wheel's ±0.25 mm.
 void TableStudy::Linearise() {
   PrepareSolver();
   const double v = 1000.0 * options_.linear_speed;
-  const Eigen::Vector4d h(0.25, 1e-4, 1e-4 * v, 1e-4 * v / geometry_.semi_spacing);
+  const double r0 = geometry_.nominal_radius;
   dynamics::SolverForces solver = *solver_forces_;
   const dynamics::ForceSource sources[2] = {
       [this](const dynamics::State& s, double speed) { return (*table_forces_)(s, speed); },
       [&solver](const dynamics::State& s, double speed) { return solver(s, speed); }};
+  const dynamics::RollCurve* rolls[2] = {&table_forces_->roll_curve(), &solver.roll_curve()};
   std::ofstream csv(out_ / "linear.csv");
   csv << "source,y_mm,speed_m_s,dfy_dy,dfy_dyaw,dfy_dvy,dfy_dvyaw,dmz_dy,dmz_dyaw,dmz_dvy,"
          "dmz_dvyaw\n";
@@ -407,6 +416,10 @@ void TableStudy::Linearise() {
     for (int k = 0; k < 2; ++k) {
       dynamics::State at;
       at.y = y;
+      const double wheel_y = y - r0 * (*rolls[k])(y);
+      const double step = 0.5 * (rolls[k]->WheelsetY(wheel_y + kWheelStep, r0) -
+                                 rolls[k]->WheelsetY(wheel_y - kWheelStep, r0));
+      const Eigen::Vector4d h(step, 1e-4, 1e-4 * v, 1e-4 * v / geometry_.semi_spacing);
       const Linearisation l{k == 0 ? "table" : "solver", y,
                             dynamics::LinearisedLoads(sources[k], at, v, h)};
       csv << l.source << ',' << y << ',' << options_.linear_speed;
@@ -425,7 +438,8 @@ void TableStudy::WriteLinearSummary(std::ostream& md) const {
       {"∂Mz/∂y, N·mm/mm", "∂Mz/∂ψ, N·mm/rad", "∂Mz/∂vy, N·mm·s/mm", "∂Mz/∂vyaw, N·mm·s/rad"}};
   md << "## Linearised contact, table against solver\n\nThe resultant's derivatives at "
      << options_.linear_speed
-     << " m/s (central differences: 0.25 mm in y, 1e-4 of creepage in "
+     << " m/s (central differences: 0.25 mm in each wheel's lateral position on its rail, 1e-4 of "
+        "creepage in "
         "ψ, vy and vyaw), in linear.csv. Where the two sources part, so do their hunting "
         "frequency and critical speed.\n\n| derivative | y, mm | table | solver | table / solver "
         "|\n|---|---|---|---|---|\n";
@@ -578,13 +592,16 @@ void TableStudy::WriteCurvingCsv() const {
 }
 
 void TableStudy::WriteCurvingPlot() const {
+  const std::vector<double>& radii = vehicle_->curving.radii;
   std::ofstream gp(out_ / "curving.gp");
   gp << "set terminal pngcairo size 1000,800 font ',10'\nset output 'curving.png'\n"
      << "set datafile separator ','\nset grid\nset key outside right\nset logscale x\n"
+     << "set xrange [" << 0.5e-3 * *std::min_element(radii.begin(), radii.end()) << ":"
+     << 2e-3 * *std::max_element(radii.begin(), radii.end()) << "]\n"
      << "set xlabel 'curve radius, m'\n"
      << "set multiplot layout 2,1 title 'The bogie in steady curves at "
      << Fixed(vehicle_->curving.cant_deficiency, 0) << " mm cant deficiency (" << table_name_
-     << "): table (lines) and solver (points)' noenhanced\n";
+     << "): table (dots) and solver (circles)' noenhanced\n";
   // One panel: a column of curving.csv against the radius for each wheel, both sources.
   const auto panel = [&gp](const std::string& label, int column, double scale) {
     gp << "set ylabel '" << label << "'\nplot ";
@@ -592,7 +609,7 @@ void TableStudy::WriteCurvingPlot() const {
       const std::string name = kCurvingWheels[w].name;
       const std::string pick = "(strcol(14) eq '" + name + "' && strcol(3) eq '";
       gp << (w ? ", " : "") << "'curving.csv' skip 1 using " << pick << "table' ? $1 : 1/0):($"
-         << column << "*" << scale << ") with linespoints lc " << w + 1 << " lw 2 title '" << name
+         << column << "*" << scale << ") with points lc " << w + 1 << " pt 7 ps 1.2 title '" << name
          << "', '' skip 1 using " << pick << "solver' ? $1 : 1/0):($" << column << "*" << scale
          << ") with points lc " << w + 1 << " pt 6 ps 2 notitle";
     }
