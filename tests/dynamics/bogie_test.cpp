@@ -11,6 +11,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
+#include "tests/dynamics/vehicle_test_util.h"
 #include "tools/dynamics/analysis.h"
 #include "tools/dynamics/bogie.h"
 #include "tools/dynamics/forces.h"
@@ -21,21 +22,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-BogieParameters Vehicle() {
-  return LoadBogieParameters(std::string(WRC_SOURCE_DIR) + "/tables/manchester_vehicle.toml");
-}
-
-// Linear creep at the vehicle's wheel load (Kalker-size coefficients of a 54.5 kN contact),
-// conicity of a new S1002 profile.
-LinearContact TestCreep() {
-  LinearContact c;
-  c.f11 = 8.0e6;
-  c.f22 = 7.2e6;
-  c.conicity = 0.2;
-  c.semi_spacing = 750.0;
-  c.nominal_radius = 460.0;
-  return c;
-}
+using test::Vehicle;
+using test::VehicleCreep;
 
 // That contact as its Jacobian at `speed` (mm/s).
 LinearisedContact Linearised(const LinearContact& c, double speed) {
@@ -45,7 +33,7 @@ LinearisedContact Linearised(const LinearContact& c, double speed) {
   return linear;
 }
 
-LinearisedContact TestContact() { return Linearised(TestCreep(), 30000.0); }
+LinearisedContact TestContact() { return Linearised(VehicleCreep(), 30000.0); }
 
 // x(t) = e^{At} x0, by Eigen's matrix exponential (scaling and squaring with Padé
 // approximants): the eigenvectors of A are too ill-conditioned to serve at 1e-9.
@@ -126,7 +114,7 @@ TEST(BogieDynamics, AFrameHeldStillLeavesTwoSingleWheelsets) {
   single.lateral_stiffness = p.primary_lateral_stiffness;
   single.longitudinal_stiffness = p.primary_longitudinal_stiffness;
   single.spring_semi_spacing = p.primary_semi_spacing;
-  const LinearContact c = TestCreep();
+  const LinearContact c = VehicleCreep();
   const LinearisedContact linear = Linearised(c, 50000.0);
   for (double v : {20000.0, 80000.0}) {
     const Eigen::Matrix<std::complex<double>, 12, 1> bogie =

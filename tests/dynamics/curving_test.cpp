@@ -10,27 +10,15 @@
 #include <cmath>
 #include <string>
 
+#include "tests/dynamics/vehicle_test_util.h"
 #include "tools/dynamics/forces.h"
 #include "wrc/core/errors.h"
 
 namespace wrc::dynamics {
 namespace {
 
-BogieParameters Vehicle() {
-  return LoadBogieParameters(std::string(WRC_SOURCE_DIR) + "/tables/manchester_vehicle.toml");
-}
-
-// Kalker-size creep coefficients of a 54.5 kN contact, conicity of a new S1002 profile.
-LinearContact Creep(double gravity_stiffness) {
-  LinearContact c;
-  c.f11 = 8.0e6;
-  c.f22 = 7.2e6;
-  c.conicity = 0.2;
-  c.semi_spacing = 750.0;
-  c.nominal_radius = 460.0;
-  c.gravity_stiffness = gravity_stiffness;
-  return c;
-}
+using test::Vehicle;
+using test::VehicleCreep;
 
 // Without primary yaw stiffness and with the cant balancing the speed, each wheelset rolls on
 // its pure-rolling line y = b·r0/(λR), where its longitudinal creepages vanish; the frame
@@ -40,7 +28,7 @@ LinearContact Creep(double gravity_stiffness) {
 TEST(Curving, WithoutPrimaryYawStiffnessWheelsetsRollOnThePureRollingLine) {
   BogieParameters p = Vehicle();
   p.primary_longitudinal_stiffness = 0.0;
-  const LinearContact c = Creep(0.0);
+  const LinearContact c = VehicleCreep();
   CurveCase curve;
   curve.radius = 600e3;
   curve.speed = 20000.0;
@@ -82,7 +70,7 @@ struct SaturatingCreep {
 TEST(Curving, TheWholeBogieBalancesItsUnbalancedForceAndYawMoment) {
   const BogieParameters p = Vehicle();
   ASSERT_EQ(p.curving.radii.size(), 3u);
-  const SaturatingCreep creep{Creep(500.0)};
+  const SaturatingCreep creep{VehicleCreep(500.0)};
   const ForceSource forces[2] = {creep, creep};
   for (const double radius : p.curving.radii) {
     const CurveCase curve = CurveCase::WithDeficiency(radius, p.curving);
