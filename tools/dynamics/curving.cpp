@@ -50,13 +50,13 @@ class Equations {
     return 0;
   }
 
-  BogieVector State(const Vector& u) const {
+  BogieVector Positions(const Vector& u) const {
     BogieVector x = BogieVector::Zero();
     for (int i = 0; i < 6; ++i) x(i) = i % 2 == 0 ? u(i) : u(i) / kYawScale;
     return x;
   }
   void Contact(const Vector& u, ContactLoads (&loads)[2]) {
-    const BogieVector x = State(u);
+    const BogieVector x = Positions(u);
     for (int k = 0; k < 2; ++k) loads[k] = forces_[k](Wheelset(x, k), curve_.speed);
     ++evaluations_;
   }
@@ -72,7 +72,7 @@ class Equations {
     return track;
   }
   Vector Residual(const Vector& u, const ContactLoads (&loads)[2]) const {
-    const BogieVector d = BogieDerivative(p_, State(u), loads, Track(u));
+    const BogieVector d = BogieDerivative(p_, Positions(u), loads, Track(u));
     const double a = p_.semi_wheelbase;
     Vector r(6);
     for (int k = 0; k < 2; ++k) {
@@ -87,8 +87,8 @@ class Equations {
 
  private:
   // The wheelset turns with the track: its yaw rate is the curve's, −V/R.
-  dynamics::State Wheelset(const BogieVector& x, int k) const {
-    dynamics::State s = WheelsetOf(x, k);
+  State Wheelset(const BogieVector& x, int k) const {
+    State s = WheelsetOf(x, k);
     s.vyaw = -curve_.speed / curve_.radius;
     return s;
   }
@@ -99,7 +99,7 @@ class Equations {
       Vector plus = u, minus = u;
       plus(2 * k + j) += step[j];
       minus(2 * k + j) -= step[j];
-      const BogieVector xp = State(plus), xm = State(minus);
+      const BogieVector xp = Positions(plus), xm = Positions(minus);
       const ContactLoads lp = forces_[k](Wheelset(xp, k), curve_.speed);
       const ContactLoads lm = forces_[k](Wheelset(xm, k), curve_.speed);
       ++evaluations_;
@@ -144,7 +144,7 @@ CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
   ContactLoads loads[2];
   equations.Contact(u, loads);
   const Vector residual = equations.Residual(u, loads);
-  const BogieVector x = equations.State(u);
+  const BogieVector x = equations.Positions(u);
   result.position = x.head<6>();
   for (int k = 0; k < 2; ++k) result.loads[k] = loads[k];
   result.body_y = equations.Track(u).body_y;

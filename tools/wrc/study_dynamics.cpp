@@ -3,6 +3,7 @@
 // rate against speed, critical speeds, and what each costs.
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -122,6 +123,14 @@ Parameters LoadModel(const std::string& path) {
 
 // ---- the study of one table ---------------------------------------------------------------
 
+// The bogie's quasi-static curving in one curve on each source.
+struct Curving {
+  dynamics::CurveCase curve;
+  dynamics::CurvingResult table;
+  std::optional<dynamics::CurvingResult> solver;
+  std::string failure;  // why the solver gave no equilibrium
+};
+
 class TableStudy {
  public:
   TableStudy(const DynamicsOptions& options, const fs::path& table_path, const fs::path& out)
@@ -199,14 +208,7 @@ class TableStudy {
     std::vector<double> speeds, hertz, damping;  // m/s, Hz, 1/s of the dominant eigenvalue
   };
   std::vector<VehicleStability> vehicle_stability_;
-  // The bogie's quasi-static curving on each source, per curve of the vehicle file.
-  struct Curving {
-    dynamics::CurveCase curve;
-    dynamics::CurvingResult table;
-    std::optional<dynamics::CurvingResult> solver;
-    std::string failure;  // why the solver gave no equilibrium
-  };
-  std::vector<Curving> curving_;
+  std::vector<Curving> curving_;  // per curve of the vehicle file
   double solver_roll_seconds_ = 0.0;
   long solver_roll_solves_ = 0;
   std::mutex mutex_;  // rows_, solver_cost_ and messages while solver runs share the study
@@ -524,6 +526,11 @@ constexpr CurvingWheel kCurvingWheels[4] = {{"leading outer", 0, true},
                                             {"trailing outer", 1, true},
                                             {"trailing inner", 1, false}};
 
+// A curve's result per source, in the order the tables list them; null where the solver gave none.
+std::array<std::pair<const char*, const dynamics::CurvingResult*>, 2> Results(const Curving& c) {
+  return {{{"table", &c.table}, {"solver", c.solver ? &*c.solver : nullptr}}};
+}
+
 int SideOf(const dynamics::ContactGeometry& g, bool outer) {
   const int plus = g.origin[WRC_RIGHT][0] > 0.0 ? WRC_RIGHT : WRC_LEFT;
   return outer ? plus : 1 - plus;
@@ -576,8 +583,7 @@ void TableStudy::WriteCurvingCsv() const {
          "yaw2_rad,frame_y_mm,frame_yaw_rad,wheel,lateral_y_n,vertical_q_n,y_over_q,t_gamma_n\n";
   csv.precision(9);
   for (const Curving& c : curving_) {
-    for (const auto& [source, r] :
-         {std::pair{"table", &c.table}, std::pair{"solver", c.solver ? &*c.solver : nullptr}}) {
+    for (const auto& [source, r] : Results(c)) {
       if (r == nullptr) continue;
       for (const CurvingWheel& w : kCurvingWheels) {
         const dynamics::WheelContact& wc = r->loads[w.wheelset].wheel[SideOf(geometry_, w.outer)];
@@ -603,22 +609,21 @@ void TableStudy::WriteCurvingPlot() const {
      << Fixed(vehicle_->curving.cant_deficiency, 0) << " mm cant deficiency (" << table_name_
      << "): table (dots) and solver (circles)' noenhanced\n";
   // One panel: a column of curving.csv against the radius for each wheel, both sources.
-  const auto panel = [&gp](const std::string& label, int column, double scale) {
+  const auto panel = [&gp](const std::string& label, int column) {
     gp << "set ylabel '" << label << "'\nplot ";
     for (int w = 0; w < 4; ++w) {
       const std::string name = kCurvingWheels[w].name;
       const std::string pick = "(strcol(14) eq '" + name + "' && strcol(3) eq '";
-      gp << (w ? ", " : "") << "'curving.csv' skip 1 using " << pick << "table' ? $1 : 1/0):($"
-         << column << "*" << scale << ") with points lc " << w + 1 << " pt 7 ps 1.2 title '" << name
-         << "', '' skip 1 using " << pick << "solver' ? $1 : 1/0):($" << column << "*" << scale
-         << ") with points lc " << w + 1 << " pt 6 ps 2 notitle";
+      gp << (w ? ", " : "") << "'curving.csv' skip 1 using " << pick
+         << "table' ? $1 : 1/0):" << column << " with points lc " << w + 1 << " pt 7 ps 1.2 title '"
+         << name << "', '' skip 1 using " << pick << "solver' ? $1 : 1/0):" << column
+         << " with points lc " << w + 1 << " pt 6 ps 2 notitle";
     }
     gp << "\n";
   };
-  panel("Y/Q", 17, 1.0);
+  panel("Y/Q", 17);
   // Tγ where the table has it (a table made without the t_gamma output gives NaN).
-  if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma))
-    panel("T{/Symbol g}, N", 18, 1.0);
+  if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma)) panel("T{/Symbol g}, N", 18);
   gp << "unset multiplot\n";
   gp.close();
   if (!RunGnuplotScript("curving.gp", out_)) {
@@ -641,8 +646,7 @@ void TableStudy::WriteCurvingSummary(std::ostream& md) const {
      << "| R, m | V, m/s | source | y1, mm | ψ1, mrad | y2, mm | ψ2, mrad | frame y, mm | frame ψ, "
         "mrad | evaluations | s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Curving& c : curving_) {
-    for (const auto& [source, r] :
-         {std::pair{"table", &c.table}, std::pair{"solver", c.solver ? &*c.solver : nullptr}}) {
+    for (const auto& [source, r] : Results(c)) {
       if (r == nullptr) continue;
       md << "| " << Fixed(c.curve.radius / 1000.0, 0) << " | " << Fixed(c.curve.speed / 1000.0, 1)
          << " | " << source << (r->converged ? "" : " (not converged)");
