@@ -570,17 +570,13 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
 
 // ---- slope target ---------------------------------------------------------------------------
 
-// Adds the state ± step as nodes of every axis whose slope misses its target: the table's
-// central difference then reads solved values only (the state is a node of every axis), the
-// solver's own. Counts in `refused` the slopes the budget leaves missed. (A slope that misses
-// with both nodes already there differs from the solver's by the solver's own noise.)
-void AddSlopeNodes(const RefineSettings& settings, const std::vector<double>& slope_errors,
+// Adds the slope target's nodes (SlopeNodes) to `axes`, axis by axis, while the grid stays
+// within `max_points` and the runtime's axis limits. Counts in `refused` the axes left out.
+void AddSlopeNodes(const std::vector<std::vector<double>>& nodes, std::size_t max_points,
                    Axes* axes, std::size_t* refused) {
-  const RefineSettings::Slope& slope = *settings.slope;
   for (std::size_t a = 0; a < axes->size(); ++a) {
-    if (!(slope_errors[a] > 1.0)) continue;
     std::vector<double> values = (*axes)[a].values;
-    for (const double x : {slope.at[a] - slope.step[a], slope.at[a] + slope.step[a]}) {
+    for (const double x : nodes[a]) {
       if (std::find(values.begin(), values.end(), x) == values.end()) values.push_back(x);
     }
     std::sort(values.begin(), values.end());
@@ -593,12 +589,22 @@ void AddSlopeNodes(const RefineSettings& settings, const std::vector<double>& sl
     for (std::size_t i = 0; i + 1 < values.size(); ++i) {
       resolvable = resolvable && AxisStepIsResolvable(values[i], values[i + 1]);
     }
-    if (!resolvable || grown > static_cast<double>(settings.max_points)) {
+    if (!resolvable || grown > static_cast<double>(max_points)) {
       ++*refused;
       continue;
     }
     (*axes)[a].values = std::move(values);
   }
+}
+
+// How many times the grid grows when `nodes` join it.
+double SlopeGrowth(const std::vector<std::vector<double>>& nodes, const Axes& axes) {
+  double growth = 1.0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const double n = static_cast<double>(axes[a].values.size());
+    growth *= (n + static_cast<double>(nodes[a].size())) / n;
+  }
+  return growth;
 }
 
 // ---- final estimate -------------------------------------------------------------------------
@@ -1149,49 +1155,124 @@ double InterpolateLinear(const std::vector<SceneAxis>& axes, const TableData& da
 std::vector<std::vector<double>> SlopeProbes(const RefineSettings::Slope& slope) {
   std::vector<std::vector<double>> points;
   for (std::size_t a = 0; a < slope.at.size(); ++a) {
-    if (slope.step[a] == 0.0) continue;
-    for (const double sign : {-1.0, 1.0}) {
-      points.push_back(slope.at);
-      points.back()[a] += sign * slope.step[a];
+    for (int k = 1; k <= slope.SamplesPerSide(a); ++k) {
+      for (const double sign : {-1.0, 1.0}) {
+        points.push_back(slope.at);
+        points.back()[a] += sign * k * slope.step[a];
+      }
     }
   }
   return points;
 }
 
-std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>& axes,
-                                const TableData& data, const std::vector<PointResult>& probes) {
+namespace {
+
+// One targeted axis' slope check: its error in units of the target and, on each side of the
+// state, the sample where the table is furthest from the solver (in units of the output's
+// pointwise tolerance): the node that mends the most.
+struct SlopeCheck {
+  double error = 0.0;
+  double worst[2] = {kNaN, kNaN};  ///< Below, above the state; NaN: none.
+};
+
+// The least-squares slope through samples symmetric about the state: Σ x (f(+x) − f(−x)) over
+// 2 Σ x², the state itself carrying no weight.
+double SymmetricSlope(const std::vector<double>& offsets, const std::vector<double>& below,
+                      const std::vector<double>& above) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < offsets.size(); ++k) {
+    num += offsets[k] * (above[k] - below[k]);
+    den += 2.0 * offsets[k] * offsets[k];
+  }
+  return num / den;
+}
+
+std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                    const TableData& data, const std::vector<PointResult>& probes) {
   const RefineSettings::Slope& slope = *scene.refine->slope;
   const ErrorModel model = MakeErrorModel(scene, *scene.refine);
-  std::vector<double> errors(axes.size(), 0.0);
+  std::vector<SlopeCheck> checks(axes.size());
   std::size_t probe = 0;
   for (std::size_t a = 0; a < axes.size(); ++a) {
-    if (slope.step[a] == 0.0) continue;
-    const PointResult& minus = probes[probe++];
-    const PointResult& plus = probes[probe++];
-    if (!Usable(minus.status) || !Usable(plus.status)) {
-      errors[a] = kNaN;
+    const int n = slope.SamplesPerSide(a);
+    if (n == 0) continue;
+    std::vector<const PointResult*> side[2];  // below, above; SlopeProbes order
+    std::vector<double> offsets;
+    for (int k = 1; k <= n; ++k) {
+      side[0].push_back(&probes[probe++]);
+      side[1].push_back(&probes[probe++]);
+      offsets.push_back(k * slope.step[a]);
+    }
+    const bool usable = std::all_of(probes.begin() + static_cast<std::ptrdiff_t>(probe - 2 * n),
+                                    probes.begin() + static_cast<std::ptrdiff_t>(probe),
+                                    [](const PointResult& r) { return Usable(r.status); });
+    if (!usable) {
+      checks[a].error = kNaN;
       continue;
     }
-    std::vector<double> below = slope.at, above = slope.at;
-    below[a] -= slope.step[a];
-    above[a] += slope.step[a];
-    const double load = LocalLoad(model, slope.at, {&minus.values, &plus.values});
+    const double load = LocalLoad(model, slope.at, {&side[0][0]->values, &side[1][0]->values});
     const double range = axes[a].values.back() - axes[a].values.front();
+    double worst_residual[2] = {0.0, 0.0};
     for (std::size_t i = 0; i < model.outputs.size(); ++i) {
       const std::size_t k = model.outputs[i];
-      const double exact = (plus.values[k] - minus.values[k]) / (2.0 * slope.step[a]);
-      const double table =
-          (InterpolateLinear(axes, data, k, above) - InterpolateLinear(axes, data, k, below)) /
-          (2.0 * slope.step[a]);
+      std::vector<double> exact[2], table[2];
+      for (int s = 0; s < 2; ++s) {
+        for (int j = 0; j < n; ++j) {
+          std::vector<double> point = slope.at;
+          point[a] += (s == 0 ? -1.0 : 1.0) * offsets[j];
+          exact[s].push_back(side[s][j]->values[k]);
+          table[s].push_back(InterpolateLinear(axes, data, k, point));
+        }
+      }
+      const double exact_slope = SymmetricSlope(offsets, exact[0], exact[1]);
+      const double table_slope = SymmetricSlope(offsets, table[0], table[1]);
       // Relative to the solver's slope; a slope that moves the output by less than its
       // pointwise target across the whole range is as good as flat.
       const double value_tolerance =
           std::isnan(model.absolute[i]) ? model.load_fraction * load : model.absolute[i];
-      const double scale = std::max(std::fabs(exact), value_tolerance / range);
-      if (!std::isfinite(exact) || !std::isfinite(table) || !(scale > 0.0)) continue;
-      errors[a] = std::max(errors[a], std::fabs(table - exact) / (slope.fraction * scale));
+      const double scale = std::max(std::fabs(exact_slope), value_tolerance / range);
+      if (!std::isfinite(exact_slope) || !std::isfinite(table_slope) || !(scale > 0.0)) continue;
+      checks[a].error = std::max(checks[a].error,
+                                 std::fabs(table_slope - exact_slope) / (slope.fraction * scale));
+      for (int s = 0; s < 2; ++s) {
+        for (int j = 0; j < n; ++j) {
+          const double residual = std::fabs(table[s][j] - exact[s][j]) / value_tolerance;
+          if (residual > worst_residual[s]) {
+            worst_residual[s] = residual;
+            checks[a].worst[s] = slope.at[a] + (s == 0 ? -1.0 : 1.0) * offsets[j];
+          }
+        }
+      }
     }
   }
+  return checks;
+}
+
+// The nodes the slope target adds: on every axis whose slope misses, the worst sample on each
+// side of the state. With one sample a side that is the state ± step, after which the table's
+// central difference reads solved values only (the state is a node of every axis), the
+// solver's own; with a window, each pass pins the table to the solver where it strays most,
+// until the fitted slopes agree. (A slope that misses with its samples all nodes differs from
+// the solver's by the solver's own noise.)
+std::vector<std::vector<double>> SlopeNodes(const std::vector<SlopeCheck>& checks,
+                                            const Axes& axes) {
+  std::vector<std::vector<double>> nodes(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    if (!(checks[a].error > 1.0)) continue;
+    for (const double x : checks[a].worst) {
+      const auto& v = axes[a].values;
+      if (!std::isnan(x) && std::find(v.begin(), v.end(), x) == v.end()) nodes[a].push_back(x);
+    }
+  }
+  return nodes;
+}
+
+}  // namespace
+
+std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>& axes,
+                                const TableData& data, const std::vector<PointResult>& probes) {
+  std::vector<double> errors;
+  for (const SlopeCheck& c : CheckSlopes(scene, axes, data, probes)) errors.push_back(c.error);
   return errors;
 }
 
@@ -1208,15 +1289,22 @@ RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>
       decision.above_target += s.max_error > 1.0 ? 1 : 0;
     }
   }
-  decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);
-  if (settings.slope) {
-    decision.slope_errors = SlopeErrors(scene, axes, data, probes);
-    for (const double e : decision.slope_errors) {
-      decision.worst = std::max(decision.worst, e);
-      decision.above_target += e > 1.0 ? 1 : 0;
-    }
-    AddSlopeNodes(settings, decision.slope_errors, &decision.next, &decision.refused);
+  if (!settings.slope) {
+    decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);
+    return decision;
   }
+  const std::vector<SlopeCheck> checks = CheckSlopes(scene, axes, data, probes);
+  for (const SlopeCheck& c : checks) {
+    decision.slope_errors.push_back(c.error);
+    decision.worst = std::max(decision.worst, c.error);
+    decision.above_target += c.error > 1.0 ? 1 : 0;
+  }
+  // The slope's nodes first: the splits get the budget they leave.
+  const std::vector<std::vector<double>> nodes = SlopeNodes(checks, axes);
+  const auto split_budget =
+      static_cast<std::size_t>(static_cast<double>(settings.max_points) / SlopeGrowth(nodes, axes));
+  decision.next = SplitIntervals(axes, scores, split_budget, &decision.refused);
+  AddSlopeNodes(nodes, settings.max_points, &decision.next, &decision.refused);
   return decision;
 }
 

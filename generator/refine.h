@@ -66,13 +66,14 @@ std::vector<RefineSample> DrawRefineSamples(const std::vector<SceneAxis>& axes,
                                             const RefineSettings& settings, int pass);
 
 /// The states whose exact solves give the solver's slopes for `[table.refine.slope]`: for each
-/// targeted axis in dimension order, the slope state minus and plus its step.
+/// targeted axis in dimension order, the slope state minus and plus k steps, k = 1 … window/step.
 std::vector<std::vector<double>> SlopeProbes(const RefineSettings::Slope& slope);
 
-/// The table's slope error per axis at the slope state: the central difference of the
-/// multilinear interpolant against that of the exact `probes` (SlopeProbes order), worst over
-/// the refined outputs, in units of the slope target. 0 for untargeted axes, NaN where a probe
-/// did not solve.
+/// The table's slope error per axis at the slope state: the least-squares slope through the
+/// window's samples (with one sample a side, the central difference) of the multilinear
+/// interpolant against that of the exact `probes` (SlopeProbes order), worst over the refined
+/// outputs, in units of the slope target. 0 for untargeted axes, NaN where a probe did not
+/// solve.
 std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<PointResult>& probes);
 
@@ -85,8 +86,10 @@ struct RefineDecision {
   std::vector<double> slope_errors;  ///< SlopeErrors() of this grid (empty without a target).
 };
 /// `probes`: the exact solves at SlopeProbes() when the scene has a slope target. An axis whose
-/// slope misses it gets the state ± step as nodes, so that the table's central difference
-/// there reads solved values only.
+/// slope misses it gets as nodes, on each side of the state, the sample where the table strays
+/// furthest from the solver (with one sample a side: the state ± step, so that the table's
+/// central difference there reads solved values only). These nodes come first; the interval
+/// splits get the point budget they leave.
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
                                 const std::vector<PointResult>& results,

@@ -334,7 +334,7 @@ std::map<std::string, double, std::less<>> ReadPositiveByName(
 const std::vector<std::string_view> kRefineKeys = {"target",     "absolute",   "outputs",
                                                    "max_points", "max_passes", "samples",
                                                    "seed",       "min_step",   "slope"};
-const std::vector<std::string_view> kSlopeKeys = {"target", "at", "step", "axes"};
+const std::vector<std::string_view> kSlopeKeys = {"target", "at", "step", "window", "axes"};
 
 void RejectUnknownKeys(const Section& section, const std::vector<std::string_view>& allowed) {
   for (const auto& [key, node] : *section.table()) {
@@ -366,9 +366,30 @@ std::map<std::string, double, std::less<>> ReadNumbersByName(
 // convergence noise (its tolerances are 1e-6 of the load, so slopes over steps down to 1e-4
 // of the range stay within 1 % of the load's slope scale).
 constexpr double kDefaultSlopeStepFraction = 1.0 / 80.0;
+// Solves a slope may take on each side of its state: a least-squares fit through a hundred
+// samples averages a discretisation ripple as well as it will; more only costs.
+constexpr int kMaxSlopeSamples = 100;
+
+// A slope's window: a whole number of steps (up to kMaxSlopeSamples a side), inside the axis.
+void CheckSlopeWindow(const Section& slope, const SceneAxis& axis, double x, double step,
+                      double window) {
+  const double n = std::round(window / step);
+  if (!(n >= 1.0 && n <= kMaxSlopeSamples && std::fabs(window - n * step) <= 1e-9 * window)) {
+    slope.Fail("window", axis.name + " = " + FormatNumber(window) + " must be 1 to " +
+                             std::to_string(kMaxSlopeSamples) + " times its step (" +
+                             FormatNumber(step) + ")");
+  }
+  const std::vector<double>& v = axis.values;
+  if (!(x - window >= v.front() && x + window <= v.back())) {
+    slope.Fail(window == step ? "step" : "window", axis.name + " ± " + FormatNumber(window) +
+                                                       " around " + FormatNumber(x) +
+                                                       " leaves the axis range");
+  }
+}
 
 /// `[table.refine.slope]`: the state (every axis at 0 unless given in `at`, and a node there),
-/// the steps, and which axes' slopes are targets (all but fz unless `axes` lists them).
+/// the steps and windows, and which axes' slopes are targets (all but fz unless `axes` lists
+/// them).
 RefineSettings::Slope ReadSlopeTarget(const Section& slope, const Scene& scene) {
   RejectUnknownKeys(slope, kSlopeKeys);
   RefineSettings::Slope target;
@@ -380,6 +401,7 @@ RefineSettings::Slope ReadSlopeTarget(const Section& slope, const Scene& scene) 
   for (const SceneAxis& axis : scene.axes) names.push_back(axis.name);
   const auto at = ReadNumbersByName(slope, "at", names);
   const auto steps = ReadPositiveByName(slope, "step", names, "an axis");
+  const auto windows = ReadPositiveByName(slope, "window", names, "an axis");
   std::vector<std::string> targeted;
   if (const toml::node* list = slope.Find("axes")) {
     const toml::array* array = list->as_array();
@@ -411,12 +433,16 @@ RefineSettings::Slope ReadSlopeTarget(const Section& slope, const Scene& scene) 
     if (std::find(targeted.begin(), targeted.end(), axis.name) != targeted.end()) {
       const auto s = steps.find(axis.name);
       h = s != steps.end() ? s->second : (v.back() - v.front()) * kDefaultSlopeStepFraction;
-      if (!(x - h >= v.front() && x + h <= v.back())) {
-        slope.Fail("step", axis.name + " ± " + FormatNumber(h) + " around " + FormatNumber(x) +
-                               " leaves the axis range");
-      }
+    }
+    const auto given_window = windows.find(axis.name);
+    const double w = given_window != windows.end() ? given_window->second : h;
+    if (h > 0.0) {
+      CheckSlopeWindow(slope, axis, x, h, w);
+    } else if (given_window != windows.end()) {
+      slope.Fail("window", axis.name + "'s slope is not a target (see " + slope.Path("axes") + ")");
     }
     target.step.push_back(h);
+    target.window.push_back(h > 0.0 ? w : 0.0);
   }
   return target;
 }
@@ -623,6 +649,10 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
 
 }  // namespace
 }  // namespace io
+
+int RefineSettings::Slope::SamplesPerSide(std::size_t a) const {
+  return step[a] > 0.0 ? static_cast<int>(std::lround(window[a] / step[a])) : 0;
+}
 
 std::size_t Scene::PointCount() const {
   std::size_t count = 1;

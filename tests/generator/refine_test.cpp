@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/common/numbers.h"
 #include "generator/refine.h"
 #include "generator/table_data.h"
 #include "tests/generator/generator_test_util.h"
@@ -173,6 +174,51 @@ TEST(Refine, ASlopeTargetPlacesNodesAtTheStatePlusAndMinusItsStep) {
   EXPECT_LE(gen::SlopeErrors(scene, axes, data, Probes(scene, Bend))[0], 1.0);
 }
 
+// Bend with a ripple of ±3 N and period 0.09 mm in fy, as a solver's discretisation leaves one.
+std::vector<double> RippledBend(const std::vector<double>& p) {
+  std::vector<double> v = Bend(p);
+  v[1] += 3.0 * std::sin(2.0 * wrc::kPi * p[0] / 0.09);
+  return v;
+}
+
+// The least-squares slope in y of output k at yaw 0 through the samples ±k·h, k = 1 … n.
+template <typename F>
+double FittedSlope(F f, int n, double h) {
+  double num = 0.0, den = 0.0;
+  for (int k = 1; k <= n; ++k) {
+    const double x = k * h;
+    num += x * (f(x) - f(-x));
+    den += 2.0 * x * x;
+  }
+  return num / den;
+}
+
+TEST(Refine, AWindowedSlopeTargetMatchesTheFittedSlopeAcrossARipple) {
+  ScratchDir dir("refine_window");
+  const Scene scene = BendScene(
+      dir.path(), "[table.refine.slope]\ntarget = 0.01\nstep = {y = 0.05}\nwindow = {y = 0.5}\n");
+  ASSERT_EQ(scene.refine->slope->SamplesPerSide(0), 10);
+  const std::vector<SceneAxis> axes = RefineOn(scene, RippledBend);
+  const gen::TableData data = Fill(axes, RippledBend);
+  // Fitted independently of the refinement: the table's and the function's slopes agree
+  // within the 1 % target.
+  const double table = FittedSlope(
+      [&](double y) {
+        return gen::InterpolateLinear(axes, data, 1, {y, 0.0});
+      },
+      10, 0.05);
+  const double exact = FittedSlope([](double y) { return RippledBend({y, 0.0})[1]; }, 10, 0.05);
+  EXPECT_NEAR(table, exact, 0.01 * std::fabs(exact)) << axes[0].values.size() << " y nodes";
+  // The nodes it added are samples of the window: multiples of the step within ±0.5 mm.
+  for (const double y : axes[0].values) {
+    if (std::fabs(y) == 5.0 || y == 0.0) continue;
+    EXPECT_LE(std::fabs(y), 0.5 + 1e-12) << y;
+    EXPECT_NEAR(y / 0.05, std::round(y / 0.05), 1e-9) << y;
+  }
+  // Fewer than the 21 samples: the fit does not need every one.
+  EXPECT_LT(axes[0].values.size(), 3u + 20u);
+}
+
 TEST(Refine, ASlopeTargetNeedsItsStateOnTheNodes) {
   ScratchDir dir("refine_slope_bad");
   try {
@@ -183,6 +229,18 @@ TEST(Refine, ASlopeTargetNeedsItsStateOnTheNodes) {
     EXPECT_NE(std::string(e.what()).find("y = 0.3"), std::string::npos) << e.what();
   }
   EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\nstep = {y = 6.0}\n"), InputError);
+  // A window of a whole number of steps, inside the axis, on a targeted axis.
+  for (const char* bad :
+       {"step = {y = 0.1}\nwindow = {y = 0.33}\n", "step = {y = 1.0}\nwindow = {y = 6.0}\n",
+        "axes = [\"yaw\"]\nwindow = {y = 1.0}\n"}) {
+    try {
+      BendScene(dir.path(), std::string("[table.refine.slope]\n") + bad);
+      FAIL() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("table.refine.slope.window"), std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\nstpe = {y = 1.0}\n"), InputError);
   EXPECT_THROW(BendScene(dir.path(), "[table.refine.slope]\naxes = [\"x\"]\n"), InputError);
 }

@@ -59,13 +59,20 @@ struct RefineSettings {
   /// `[table.refine.slope]`: a target on the table's slopes at one state (centred running):
   /// the linearised contact a stability analysis or a simulator's Jacobian takes from it.
   struct Slope {
-    /// Error of the table's central difference against the solver's, relative to the
-    /// solver's (with a floor: the output's pointwise target over the axis range).
+    /// Error of the table's slope against the solver's, relative to the solver's (with a
+    /// floor: the output's pointwise target over the axis range).
     double fraction = 0.01;
     /// The state, per axis in dimension order; a node of the starting grid.
     std::vector<double> at;
-    /// Central-difference step per axis in dimension order; 0: the axis' slope is not a target.
+    /// Spacing of the slope's samples per axis in dimension order; 0: the axis' slope is not a
+    /// target.
     std::vector<double> step;
+    /// Half-width of the least-squares window per axis, a whole number of steps: the slope is
+    /// fitted through the samples at ±step, ±2·step, … ±window (window = step: the central
+    /// difference).
+    std::vector<double> window;
+    /// Samples on each side of the state on axis a: window / step.
+    int SamplesPerSide(std::size_t a) const;
   };
   std::optional<Slope> slope;
 };
