@@ -153,6 +153,34 @@ TEST(WheelsetDynamics, LinearisedLoadsAreTheLinearContactsCoefficients) {
   }
 }
 
+// The least-squares slope through n samples a side out to ±h of f(y) = a·y + c·y³ (the even part
+// cancels): a + c·h²·Σk⁴ / (n²·Σk²), k = 1..n, against the closed form; the yaw column,
+// sampled once a side, is the central difference.
+TEST(WheelsetDynamics, LinearisedLoadsFitALeastSquaresSlope) {
+  constexpr double a = -500.0, c = 80.0, h = 0.5, q = 3.0;
+  constexpr int n = 4;
+  const ForceSource cubic = [](const State& s, double) {
+    ContactLoads loads;
+    loads.fy = a * s.y + c * s.y * s.y * s.y + q * s.y * s.y;
+    loads.mz = 2.0 * loads.fy + 1e6 * s.yaw;
+    return loads;
+  };
+  const Eigen::Matrix<double, 2, 4> d = LinearisedLoads(
+      cubic, State{}, 1000.0, Eigen::Vector4d(h, 1e-4, 1.0, 1e-3), Eigen::Vector4i(n, 1, 1, 1));
+  double k2 = 0.0, k4 = 0.0;
+  for (int k = 1; k <= n; ++k) {
+    k2 += k * k;
+    k4 += k * k * k * k;
+  }
+  const double expected = a + c * h * h * k4 / (n * n * k2);  // 14.75 N/mm above a
+  EXPECT_NEAR(d(0, 0), expected, 1e-9 * std::fabs(a));
+  EXPECT_NEAR(d(1, 0), 2.0 * expected, 2e-9 * std::fabs(a));
+  EXPECT_NEAR(d(1, 1), 1e6, 1e-3);
+  EXPECT_THROW(
+      LinearisedLoads(cubic, State{}, 1000.0, Eigen::Vector4d::Ones(), Eigen::Vector4i(0, 1, 1, 1)),
+      std::invalid_argument);
+}
+
 // A roll proportional to y, roll = c·y, is found as the root of the wheels' height mismatch and
 // interpolated exactly; the wheelset position whose wheels sit at w on their rails is then
 // w / (1 − r0·c).

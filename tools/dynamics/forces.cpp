@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -252,17 +253,27 @@ ContactGeometry SceneGeometry(const Case& base, double wheel_load) {
 // ---- linear -----------------------------------------------------------------------------
 
 Eigen::Matrix<double, 2, 4> LinearisedLoads(const ForceSource& source, const State& at,
-                                            double velocity, const Eigen::Vector4d& h) {
-  Eigen::Matrix<double, 2, 4> d;
+                                            double velocity, const Eigen::Vector4d& h,
+                                            const Eigen::Vector4i& n) {
+  Eigen::Matrix<double, 2, 4> d = Eigen::Matrix<double, 2, 4>::Zero();
   for (int j = 0; j < 4; ++j) {
-    State plus = at, minus = at;
-    double* p[4] = {&plus.y, &plus.yaw, &plus.vy, &plus.vyaw};
-    double* m[4] = {&minus.y, &minus.yaw, &minus.vy, &minus.vyaw};
-    *p[j] += h(j);
-    *m[j] -= h(j);
-    const ContactLoads a = source(plus, velocity), b = source(minus, velocity);
-    d(0, j) = (a.fy - b.fy) / (2.0 * h(j));
-    d(1, j) = (a.mz - b.mz) / (2.0 * h(j));
+    if (n(j) < 1) throw std::invalid_argument("LinearisedLoads: fewer than one sample a side");
+    // Offsets ±x_k symmetric about the state: the least-squares slope is
+    // Σ x_k (f(+x_k) − f(−x_k)) / (2 Σ x_k²), and the state itself carries no weight.
+    double sum_xx = 0.0;
+    for (int k = 1; k <= n(j); ++k) {
+      const double x = h(j) * k / n(j);
+      State plus = at, minus = at;
+      double* p[4] = {&plus.y, &plus.yaw, &plus.vy, &plus.vyaw};
+      double* m[4] = {&minus.y, &minus.yaw, &minus.vy, &minus.vyaw};
+      *p[j] += x;
+      *m[j] -= x;
+      const ContactLoads a = source(plus, velocity), b = source(minus, velocity);
+      d(0, j) += x * (a.fy - b.fy);
+      d(1, j) += x * (a.mz - b.mz);
+      sum_xx += 2.0 * x * x;
+    }
+    d.col(j) /= sum_xx;
   }
   return d;
 }

@@ -107,11 +107,14 @@ class SolverForces {
 /// The rail origins the solver places for a scene (right from a solve, left mirrored).
 ContactGeometry SceneGeometry(const Case& base, double wheel_load);
 
-/// The derivatives ∂(F_y, M_z)/∂(y, ψ, vy, vyaw) of a force source at a state, by central
-/// differences with steps h (same order): the linearised coupling of wheelset and track that
-/// decides the hunting frequency and the critical speed, to compare sources term by term.
+/// The derivatives ∂(F_y, M_z)/∂(y, ψ, vy, vyaw) of a force source at a state: the linearised
+/// coupling of wheelset and track that decides the hunting frequency and the critical speed, to
+/// compare sources term by term. Coordinate j is sampled at n_j evenly spaced offsets on each
+/// side, out to ±h_j (same order), and its derivative is the least-squares slope through them;
+/// n_j = 1 is the central difference with step h_j.
 Eigen::Matrix<double, 2, 4> LinearisedLoads(const ForceSource& source, const State& at,
-                                            double velocity, const Eigen::Vector4d& h);
+                                            double velocity, const Eigen::Vector4d& h,
+                                            const Eigen::Vector4i& n = Eigen::Vector4i::Ones());
 
 /// Linear contact: creep forces −f·creepage with Kalker-type coefficients f11 (longitudinal)
 /// and f22 (lateral) per wheel, conicity λ, and a gravitational stiffness k_g (N/mm).

@@ -55,8 +55,15 @@ struct DynamicsOptions {
   std::string vehicle;         // a vehicle file: the bogie's linear stability from both sources
 };
 
-// The linearised contact's step in each wheel's lateral position on its rail, mm.
-constexpr double kWheelStep = 0.25;
+// The linearised contact's y derivative: the least-squares slope over ±kWheelWindow (mm) of
+// each wheel's lateral position on its rail, kWheelSamples evenly spaced on each side. At 0.5 mm
+// elements a wheel's fy carries a discretisation ripple of about ±10 N (0.02 % of the
+// Manchester wheel load) with a period of one element of contact travel, 0.08-0.09 mm of y on
+// that pair: a central difference over ±0.25 mm picks up a different part of it in each source
+// (up to 10 % of ∂Fy/∂y), while a fit over ±0.5 mm spans about twelve periods and leaves well
+// under 1 %. The window is also the amplitude at which the bogie hunts near its critical speed.
+constexpr double kWheelWindow = 0.5;
+constexpr int kWheelSamples = 10;
 
 // Extrema before this are the transient of the initial disturbance, not hunting.
 constexpr double kSettle = 0.1;  // s
@@ -394,13 +401,10 @@ void TableStudy::RunSolver() {
 }
 
 // ∂(F_y, M_z)/∂(y, ψ, vy, vyaw) of both sources at y = 0 and at the initial disturbance.
-// Steps: 0.25 mm in each wheel's lateral position on its rail, and 1e-4 of creepage in the
-// others (the creep forces bend within about 4e-4, hunting at 1 mm lives at about 1e-4), vyaw's
-// step giving 1e-4 at the nominal b. The y step is the wheel's, not the wheelset's: through the
-// roll a wheelset step of 0.25 mm moves each wheel by 0.256 mm on the Manchester pair, where a
-// wheel's fy falls by 11 N between 0.25 and 0.256 mm (solver, 54.5 kN) and rises by 200 N to
-// 1 mm: a difference over 0.256 mm samples structure finer than any table's nodes, and the
-// slope target ([table.refine.slope]) places its nodes at the wheel's ±0.25 mm.
+// y: the fit of kWheelWindow, its window taken in each wheel's lateral position on its rail
+// (through the roll a wheelset step moves each wheel about 2 % further on the Manchester pair).
+// The others: central differences with 1e-4 of creepage (the creep forces bend within about
+// 4e-4, hunting at 1 mm lives at about 1e-4), vyaw's step giving 1e-4 at the nominal b.
 void TableStudy::Linearise() {
   PrepareSolver();
   const double v = 1000.0 * options_.linear_speed;
@@ -419,11 +423,12 @@ void TableStudy::Linearise() {
       dynamics::State at;
       at.y = y;
       const double wheel_y = y - r0 * (*rolls[k])(y);
-      const double step = 0.5 * (rolls[k]->WheelsetY(wheel_y + kWheelStep, r0) -
-                                 rolls[k]->WheelsetY(wheel_y - kWheelStep, r0));
-      const Eigen::Vector4d h(step, 1e-4, 1e-4 * v, 1e-4 * v / geometry_.semi_spacing);
+      const double window = 0.5 * (rolls[k]->WheelsetY(wheel_y + kWheelWindow, r0) -
+                                   rolls[k]->WheelsetY(wheel_y - kWheelWindow, r0));
+      const Eigen::Vector4d h(window, 1e-4, 1e-4 * v, 1e-4 * v / geometry_.semi_spacing);
+      const Eigen::Vector4i n(kWheelSamples, 1, 1, 1);
       const Linearisation l{k == 0 ? "table" : "solver", y,
-                            dynamics::LinearisedLoads(sources[k], at, v, h)};
+                            dynamics::LinearisedLoads(sources[k], at, v, h, n)};
       csv << l.source << ',' << y << ',' << options_.linear_speed;
       for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 4; ++j) csv << ',' << l.d(i, j);
@@ -439,10 +444,11 @@ void TableStudy::WriteLinearSummary(std::ostream& md) const {
       {"∂Fy/∂y, N/mm", "∂Fy/∂ψ, N/rad", "∂Fy/∂vy, N·s/mm", "∂Fy/∂vyaw, N·s/rad"},
       {"∂Mz/∂y, N·mm/mm", "∂Mz/∂ψ, N·mm/rad", "∂Mz/∂vy, N·mm·s/mm", "∂Mz/∂vyaw, N·mm·s/rad"}};
   md << "## Linearised contact, table against solver\n\nThe resultant's derivatives at "
-     << options_.linear_speed
-     << " m/s (central differences: 0.25 mm in each wheel's lateral position on its rail, 1e-4 of "
-        "creepage in "
-        "ψ, vy and vyaw), in linear.csv. Where the two sources part, so do their hunting "
+     << options_.linear_speed << " m/s (in y the least-squares slope over ±" << kWheelWindow
+     << " mm of each wheel's "
+     << "lateral position on its rail, " << 2 * kWheelSamples
+     << " solves; in ψ, vy and vyaw central differences with 1e-4 of creepage), in linear.csv. "
+        "Where the two sources part, so do their hunting "
         "frequency and critical speed.\n\n| derivative | y, mm | table | solver | table / solver "
         "|\n|---|---|---|---|---|\n";
   for (std::size_t k = 0; k + 1 < linear_.size(); k += 2) {
