@@ -38,6 +38,7 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   const auto lock = h5::LibraryLock();
   const h5::File file = h5::File::Open(path.string());
   TableInfo info;
+  info.sealed = file.Sealed();
   if (!file.HasAttribute(schema::kFormat)) {
     throw InputError(path.string() + ": not a wrc table (no 'format' attribute)");
   }

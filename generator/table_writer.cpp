@@ -8,6 +8,7 @@
 
 #include "generator/table_data.h"
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/seal.h"
 #include "runtime/hdf5/table_schema.h"
 #include "wrc/core/errors.h"
 
@@ -76,13 +77,10 @@ static_assert(static_cast<int>(PointStatus::kError) ==
               static_cast<int>(schema::StoredStatus::kError));
 static_assert(kPointStatusCount == schema::kStoredStatusCount);
 
-void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const TableData& data,
-                    const TableProvenance& provenance) {
-  if (data.finished != data.status.size()) {
-    throw std::logic_error("WriteTableFile: the table has unfinished points");
-  }
-  const auto lock = h5::LibraryLock();
-  h5::File file = h5::File::Create(path.string(), /*overwrite=*/true);
+namespace {
+
+void WriteTableContents(h5::File& file, const Scene& scene, const TableData& data,
+                        const TableProvenance& provenance) {
   file.WriteStringAttribute(schema::kFormat, schema::kFormatName);
   file.WriteIntAttribute(schema::kFormatVersionAttribute, schema::kFormatVersion);
   file.WriteStringAttribute(schema::kWrcVersion, GeneratorVersion());
@@ -141,7 +139,23 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
         .WriteStringAttribute(schema::kMeaning, "flat row-major index into the grid");
     errors.WriteStringDataset(schema::kErrorMessage, messages, storage);
   }
-  file.Flush();
+}
+
+}  // namespace
+
+void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const TableData& data,
+                    const TableProvenance& provenance) {
+  if (data.finished != data.status.size()) {
+    throw std::logic_error("WriteTableFile: the table has unfinished points");
+  }
+  const auto lock = h5::LibraryLock();
+  {
+    h5::File file = h5::File::Create(path.string(), /*overwrite=*/true,
+                                     h5::FileFormat::kChecksummed, /*sealed=*/true);
+    WriteTableContents(file, scene, data, provenance);
+    file.Flush();  // a failed write is an error here; in the destructor it would be lost
+  }                // closed: every byte is written before the seal is taken
+  h5::SealFile(path.string());
 }
 
 }  // namespace wrc::gen

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/seal.h"
 #include "runtime/hdf5/table_schema.h"
 #include "runtime/kernels.h"
 #include "runtime/table.h"
@@ -255,6 +256,8 @@ Table Table::Load(const std::string& path) {
   std::optional<h5::File> opened;
   try {
     opened.emplace(h5::File::Open(path));
+  } catch (const h5::SealError& error) {
+    throw TableError(WRC_ERR_FORMAT, std::string(error.what()));
   } catch (const h5::Error& error) {
     throw TableError(WRC_ERR_FILE, std::string(error.what()));
   }

@@ -1,5 +1,7 @@
 #include "runtime/hdf5/hdf5.h"
 
+#include "runtime/hdf5/seal.h"
+
 // HDF5's own header: runtime/hdf5 is not an include directory, so <hdf5.h> cannot resolve to
 // the wrapper header above.
 #include <hdf5.h>
@@ -830,14 +832,15 @@ void Group::Remove(const std::string& name) {
 
 File File::Open(const std::string& path, Mode mode) {
   EnsureSilenced();
+  const bool sealed = CheckSeal(path) == SealStatus::kIntact;
   const unsigned flags = mode == Mode::kReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR;
   return File(Handle(Check(H5Fopen(path.c_str(), flags, H5P_DEFAULT), path + ":/",
                            "cannot open the file as HDF5"),
                      Handle::Kind::kFile),
-              path);
+              path, sealed);
 }
 
-File File::Create(const std::string& path, bool overwrite, FileFormat format) {
+File File::Create(const std::string& path, bool overwrite, FileFormat format, bool sealed) {
   EnsureSilenced();
   const std::string where = path + ":/";
   Handle fapl(Check(H5Pcreate(H5P_FILE_ACCESS), where, "cannot create a property list"),
@@ -851,11 +854,14 @@ File File::Create(const std::string& path, bool overwrite, FileFormat format) {
   // The root group keeps its members in creation order too, like groups from CreateGroup.
   Check(H5Pset_link_creation_order(fcpl.id(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), where,
         "cannot track creation order");
+  if (sealed) {
+    Check(H5Pset_userblock(fcpl.id(), kUserBlockSize), where, "cannot reserve the user block");
+  }
   const unsigned flags = overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL;
   return File(Handle(Check(H5Fcreate(path.c_str(), flags, fcpl.id(), fapl.id()), where,
                            "cannot create the file"),
                      Handle::Kind::kFile),
-              path);
+              path, false);
 }
 
 void File::Flush() { Check(H5Fflush(id(), H5F_SCOPE_GLOBAL), Where(), "cannot flush"); }

@@ -387,11 +387,17 @@ class File : public Group {
  public:
   enum class Mode { kReadOnly, kReadWrite };
 
-  /// Opens an existing file. Throws Error when it does not exist or is not an HDF5 file.
+  /// Opens an existing file after CheckSeal (seal.h): throws Error when it does not exist, is
+  /// damaged (does not match its seal) or is not an HDF5 file. A file opened for writing must
+  /// be sealed again (SealFile) once closed.
   static File Open(const std::string& path, Mode mode = Mode::kReadOnly);
-  /// Creates a file; with overwrite false, fails if the file exists.
+  /// Creates a file; with overwrite false, fails if the file exists. `sealed`: with an empty
+  /// user block of kUserBlockSize bytes for SealFile to fill once the file is closed.
   static File Create(const std::string& path, bool overwrite = true,
-                     FileFormat format = FileFormat::kChecksummed);
+                     FileFormat format = FileFormat::kChecksummed, bool sealed = false);
+
+  /// Whether the file carried an intact seal when opened (false: an unsealed, older file).
+  bool Sealed() const { return sealed_; }
 
   /// Writes buffered data to disk.
   void Flush();
@@ -401,7 +407,9 @@ class File : public Group {
   FileFormat Format() const;
 
  private:
-  File(Handle handle, std::string file) : Group(std::move(handle), std::move(file), "/") {}
+  File(Handle handle, std::string file, bool sealed)
+      : Group(std::move(handle), std::move(file), "/"), sealed_(sealed) {}
+  bool sealed_ = false;
 };
 
 /// The names of the root attributes to read: all of them where the file's metadata carries

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/seal.h"
 #include "tests/runtime/table_writer.h"
 #include "wrc/runtime.h"
 
@@ -217,6 +218,56 @@ TEST(RuntimeDamage, NoSingleChangedByteGivesADifferentNumber) {
     ASSERT_EQ(result.values, expected.values) << "byte " << offset << " changed the numbers";
   }
   EXPECT_GT(refused, 0);
+}
+
+// A sealed table proves itself before HDF5 reads it: every single changed byte, in the seal, its
+// padding or the HDF5 file after it, is WRC_ERR_FORMAT, and so is a truncated or extended file.
+TEST(RuntimeDamage, EveryChangedByteOfASealedTableIsRefusedBeforeHdf5) {
+  ScratchFile intact("sealed");
+  TableContent content = SmallTable(FileFormat::kChecksummed);
+  content.sealed = true;
+  wrc::test::WriteTable(intact.path(), content);
+  const Evaluation expected = Evaluate(intact.path());
+  ASSERT_EQ(expected.code, 0) << wrc_last_error();
+  const std::vector<char> bytes = ReadBytes(intact.path());
+  ASSERT_GT(bytes.size(), wrc::h5::kUserBlockSize);
+  ScratchFile scratch("sealed_flipped");
+  std::size_t refused = 0;
+  for (std::size_t offset = 0; offset < bytes.size(); ++offset) {
+    std::vector<char> damaged = bytes;
+    damaged[offset] = static_cast<char>(damaged[offset] ^ 0x5a);
+    WriteBytes(scratch.path(), damaged);
+    const Evaluation result = Evaluate(scratch.path());
+    EXPECT_EQ(result.code, WRC_ERR_FORMAT) << "byte " << offset;
+    refused += result.code == WRC_ERR_FORMAT ? 1 : 0;
+  }
+  EXPECT_EQ(refused, bytes.size());
+  std::vector<char> shorter(bytes.begin(), bytes.end() - 1), longer = bytes;
+  longer.push_back('\0');
+  for (const auto& changed : {shorter, longer}) {
+    WriteBytes(scratch.path(), changed);
+    EXPECT_EQ(Evaluate(scratch.path()).code, WRC_ERR_FORMAT) << changed.size() << " bytes";
+    EXPECT_NE(std::string(wrc_last_error()).find("damaged"), std::string::npos) << wrc_last_error();
+  }
+}
+
+// A sealed table edited through HDF5 and sealed again reads as the edit left it; edited and not
+// sealed again, it is refused.
+TEST(RuntimeDamage, ASealedTableEditedMustBeSealedAgain) {
+  ScratchFile scratch("resealed");
+  TableContent content = SmallTable(FileFormat::kChecksummed);
+  content.sealed = true;
+  wrc::test::WriteTable(scratch.path(), content);
+  {
+    wrc::h5::File file = wrc::h5::File::Open(scratch.path(), wrc::h5::File::Mode::kReadWrite);
+    EXPECT_TRUE(file.Sealed());
+    file.WriteStringAttribute("note", "edited");
+  }
+  EXPECT_EQ(Evaluate(scratch.path()).code, WRC_ERR_FORMAT);
+  wrc::h5::SealFile(scratch.path());
+  const Evaluation result = Evaluate(scratch.path());
+  ASSERT_EQ(result.code, 0) << wrc_last_error();
+  EXPECT_EQ(result.values.size(), 12u);
 }
 
 }  // namespace

@@ -153,7 +153,7 @@ TEST(RuntimeLoad, MissingFile) {
 TEST(RuntimeLoad, NotAnHdf5File) {
   ScratchFile scratch("text");
   std::ofstream(scratch.path()) << "this is not HDF5\n";
-  ExpectOpenError(scratch.path(), WRC_ERR_FILE, {scratch.path(), "cannot open the file as HDF5"});
+  ExpectOpenError(scratch.path(), WRC_ERR_FILE, {scratch.path(), "not a wrc table"});
 }
 
 TEST(RuntimeLoad, WrongFormatAttribute) {

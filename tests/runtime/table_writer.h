@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/seal.h"
 #include "runtime/hdf5/table_schema.h"
 
 namespace wrc::test {
@@ -43,6 +44,9 @@ struct TableContent {
   /// Name the axes of every grid dataset in its attribute 'dimensions', as the generator does
   /// (tables written before it did lack the attribute).
   bool write_dimensions = true;
+  /// Seal the file as the generator does (runtime/hdf5/seal.h); unsealed: as tables were
+  /// written before seals.
+  bool sealed = false;
 };
 
 /// n values from first to last, equally spaced (last exactly).
@@ -65,8 +69,15 @@ inline std::vector<TableAxis> WheelsetAxes(int y_nodes) {
 }
 
 /// Writes content to path (overwriting) as a complete, valid table.
+inline void WriteTableContents(const std::string& path, const TableContent& content);
+
 inline void WriteTable(const std::string& path, const TableContent& content) {
-  h5::File file = h5::File::Create(path, /*overwrite=*/true, content.format);
+  WriteTableContents(path, content);
+  if (content.sealed) h5::SealFile(path);
+}
+
+inline void WriteTableContents(const std::string& path, const TableContent& content) {
+  h5::File file = h5::File::Create(path, /*overwrite=*/true, content.format, content.sealed);
   file.WriteStringAttribute(schema::kFormat, schema::kFormatName);
   file.WriteIntAttribute(schema::kFormatVersionAttribute, schema::kFormatVersion);
   file.WriteStringAttribute(schema::kWrcVersion, "0.1.0-test");

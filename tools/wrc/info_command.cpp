@@ -71,6 +71,7 @@ json InfoJson(const std::string& path, const TableInfo& info) {
       {"file", path},
       {"format", info.format},
       {"format_version", info.format_version},
+      {"sealed", info.sealed},
       {"warnings_count", info.warnings_count >= 0 ? json(info.warnings_count) : json(nullptr)},
       {"points", info.points},
       {"axes", axes},
@@ -148,6 +149,10 @@ void PrintRefinement(const TableInfo& info) {
 void PrintHuman(const std::string& path, const TableInfo& info) {
   std::cout << path << ": " << info.format << " version " << info.format_version << ", "
             << info.points << " points\n";
+  std::cout << (info.sealed ? "  seal                  intact (a SHA-256 of every byte, checked "
+                              "before HDF5 reads the file)\n"
+                            : "  seal                  none: written before seals, so damage is "
+                              "only found as HDF5 reads it; regenerate to seal it\n");
   for (const char* name :
        {"wrc_version", "created", "rail_profile_sha256", "wheel_profile_sha256", "z_warm_start"}) {
     const std::string value = Attribute(info, name);

@@ -196,6 +196,8 @@ struct TableInfo {
   };
   std::string format;
   std::int64_t format_version = 0;
+  /// Whether the file carries a seal, checked before HDF5 read it (false: written before seals).
+  bool sealed = false;
   /// Solved points with warnings (root attribute warnings_count); -1 when the table predates it.
   std::int64_t warnings_count = -1;
   /// Root string attributes (wrc_version, created, scene, profile hashes, ...), by name.
