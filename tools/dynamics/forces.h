@@ -47,8 +47,8 @@ class RollCurve {
 };
 
 /// The y spacing of both sources' roll curves, mm: the same for both, so that the linearised
-/// contact (whose y step is 0.25 mm) sees the same secant of the roll in each; a coarser solver
-/// curve put ∂Fy/∂y at centred running 8 % apart on the Manchester vehicle's table.
+/// contact sees the same roll in each; a coarser solver curve put ∂Fy/∂y at centred running 8 %
+/// apart on the Manchester vehicle's table.
 constexpr double kRollCurveStep = 0.25;
 
 /// Per-wheel contact results assembled into the resultant about the wheelset centre at
