@@ -1196,16 +1196,19 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
   for (std::size_t a = 0; a < axes.size(); ++a) {
     const int n = slope.SamplesPerSide(a);
     if (n == 0) continue;
-    std::vector<const PointResult*> side[2];  // below, above; SlopeProbes order
+    std::vector<const PointResult*> side[2];     // below, above; SlopeProbes order
+    std::vector<std::vector<double>> points[2];  // the same samples' coordinates
     std::vector<double> offsets;
+    bool usable = true;
     for (int k = 1; k <= n; ++k) {
-      side[0].push_back(&probes[probe++]);
-      side[1].push_back(&probes[probe++]);
       offsets.push_back(k * slope.step[a]);
+      for (int s = 0; s < 2; ++s) {
+        side[s].push_back(&probes[probe++]);
+        usable = usable && Usable(side[s].back()->status);
+        points[s].push_back(slope.at);
+        points[s].back()[a] += (s == 0 ? -1.0 : 1.0) * offsets.back();
+      }
     }
-    const bool usable = std::all_of(probes.begin() + static_cast<std::ptrdiff_t>(probe - 2 * n),
-                                    probes.begin() + static_cast<std::ptrdiff_t>(probe),
-                                    [](const PointResult& r) { return Usable(r.status); });
     if (!usable) {
       checks[a].error = kNaN;
       continue;
@@ -1218,10 +1221,8 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
       std::vector<double> exact[2], table[2];
       for (int s = 0; s < 2; ++s) {
         for (int j = 0; j < n; ++j) {
-          std::vector<double> point = slope.at;
-          point[a] += (s == 0 ? -1.0 : 1.0) * offsets[j];
           exact[s].push_back(side[s][j]->values[k]);
-          table[s].push_back(InterpolateLinear(axes, data, k, point));
+          table[s].push_back(InterpolateLinear(axes, data, k, points[s][j]));
         }
       }
       const double exact_slope = SymmetricSlope(offsets, exact[0], exact[1]);
@@ -1239,7 +1240,7 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
           const double residual = std::fabs(table[s][j] - exact[s][j]) / value_tolerance;
           if (residual > worst_residual[s]) {
             worst_residual[s] = residual;
-            checks[a].worst[s] = slope.at[a] + (s == 0 ? -1.0 : 1.0) * offsets[j];
+            checks[a].worst[s] = points[s][j][a];
           }
         }
       }
