@@ -52,7 +52,7 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
   if (file.HasAttribute(schema::kWarningsCount)) {
     info.warnings_count = file.ReadIntAttribute(schema::kWarningsCount);
   }
-  for (const std::string& name : h5::RootAttributeNamesToRead(file, schema::RootAttributeNames())) {
+  for (const std::string& name : file.AttributeNames()) {
     if (name == schema::kFormat) continue;
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString) {

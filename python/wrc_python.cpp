@@ -355,6 +355,14 @@ PYBIND11_MODULE(wrc, m) {
            [](py::handle s, int i) { return Constructed<PyTable>(s).table.axis_unit(i); })
       .def("output_unit",
            [](py::handle s, int i) { return Constructed<PyTable>(s).table.output_unit(i); })
+      .def_property_readonly(
+          "warning",
+          [](py::handle s) -> py::object {
+            const std::string text = Constructed<PyTable>(s).table.warning();
+            if (text.empty()) return py::none();
+            return py::str(text);
+          },
+          "why the table should be replaced although it loaded (unsealed), or None")
       .def("attribute",
            [](py::handle s, const std::string& n) {
              // A NUL would end the C name early and read another attribute.

@@ -231,4 +231,10 @@ const char* wrc_table_attribute(const wrc_table* t, const char* name) {
   return found->second.c_str();
 }
 
+const char* wrc_table_warning(const wrc_table* t) {
+  if (!CheckTable(t, "wrc_table_warning")) return nullptr;
+  const std::string& warning = t->table.warning();
+  return warning.empty() ? nullptr : warning.c_str();
+}
+
 }  // extern "C"

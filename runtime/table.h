@@ -74,6 +74,8 @@ class Table {
   const Axis& axis(int i) const { return axes_[static_cast<std::size_t>(i)]; }
   const Output& output(int i) const { return outputs_[static_cast<std::size_t>(i)]; }
   const std::string& path() const { return path_; }
+  /// Why the table should be replaced though it loaded (an unsealed table); empty: none.
+  const std::string& warning() const { return warning_; }
   /// Root string attributes (format, wrc_version, scene, ...).
   const std::map<std::string, std::string, std::less<>>& attributes() const { return attributes_; }
 
@@ -146,7 +148,8 @@ class Table {
   std::string path_;
   std::vector<Axis> axes_;
   std::vector<Output> outputs_;
-  std::map<std::string, std::string, std::less<>> attributes_;  // less<>: lookup by const char*
+  std::map<std::string, std::string, std::less<>> attributes_;
+  std::string warning_;  // less<>: lookup by const char*
 
   std::vector<int> active_axes_;          ///< Axes with more than one node, ascending.
   AxisLookup lookup_[kMaxAxes];           ///< Per active axis.

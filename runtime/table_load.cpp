@@ -258,6 +258,8 @@ Table Table::Load(const std::string& path) {
     opened.emplace(h5::File::Open(path));
   } catch (const h5::SealError& error) {
     throw TableError(WRC_ERR_FORMAT, std::string(error.what()));
+  } catch (const h5::EarliestFormatError& error) {
+    throw TableError(WRC_ERR_FORMAT, std::string(error.what()));
   } catch (const h5::Error& error) {
     throw TableError(WRC_ERR_FILE, std::string(error.what()));
   }
@@ -267,7 +269,13 @@ Table Table::Load(const std::string& path) {
 
   Table table;
   table.path_ = path;
-  for (const std::string& name : h5::RootAttributeNamesToRead(file, schema::RootAttributeNames())) {
+  if (!file.Sealed()) {
+    table.warning_ = path +
+                     ": not sealed (written before tables carried a SHA-256 of their bytes), so "
+                     "damage is found only as HDF5 reads it; seal it with `wrc upgrade " +
+                     path + " -o NEW.h5`";
+  }
+  for (const std::string& name : file.AttributeNames()) {
     const h5::Attribute attribute = file.OpenAttribute(name);
     if (attribute.Type().Class() == h5::TypeClass::kString &&
         attribute.Space().NumElements() == 1) {

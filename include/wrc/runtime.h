@@ -196,6 +196,11 @@ WRC_API const signed char* wrc_table_node_status(const wrc_table* t);
  *  NULL when there is none of that name (wrc_last_error() then says so). */
 WRC_API const char* wrc_table_attribute(const wrc_table* t, const char* name);
 
+/** Why the table should be replaced although it loaded, or NULL: a table written before tables
+ *  were sealed (a SHA-256 of its bytes checked before HDF5 reads them) loads, but damage to it
+ *  is found only as HDF5 reads it; `wrc upgrade OLD.h5 -o NEW.h5` seals it. */
+WRC_API const char* wrc_table_warning(const wrc_table* t);
+
 /* ---------------------------------------------------------------------------------------------
  * Wheelsets
  *

@@ -79,6 +79,11 @@ class Table {
     for (int i = 0; i < num_outputs(); ++i) names.push_back(output_name(i));
     return names;
   }
+  /// Why the table should be replaced although it loaded (an unsealed table); empty: none.
+  std::string warning() const {
+    const char* text = wrc_table_warning(handle_);
+    return text != nullptr ? text : "";
+  }
   /// A string attribute of the root group (wrc_version, scene, ...); throws when absent.
   std::string attribute(const std::string& name) const {
     return CheckedString(wrc_table_attribute(handle_, name.c_str()), WRC_ERR_NOT_FOUND);

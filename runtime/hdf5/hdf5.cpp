@@ -830,9 +830,17 @@ void Group::Remove(const std::string& name) {
 // ---------------------------------------------------------------------------------------------
 // File
 
-File File::Open(const std::string& path, Mode mode) {
+File File::Open(const std::string& path, Mode mode, Earliest earliest) {
   EnsureSilenced();
-  const bool sealed = CheckSeal(path) == SealStatus::kIntact;
+  const SealStatus seal = CheckSeal(path);
+  if (seal == SealStatus::kUnsealedEarliest && earliest == Earliest::kRefuse) {
+    throw EarliestFormatError(
+        path + ":/",
+        "written in HDF5's earliest format, whose metadata carries no checksums (a damaged "
+        "byte can crash the HDF5 library as it reads): convert it once with `wrc upgrade " +
+            path + " -o NEW.h5`, which reads it in a separate process");
+  }
+  const bool sealed = seal == SealStatus::kIntact;
   const unsigned flags = mode == Mode::kReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR;
   return File(Handle(Check(H5Fopen(path.c_str(), flags, H5P_DEFAULT), path + ":/",
                            "cannot open the file as HDF5"),
@@ -866,14 +874,51 @@ File File::Create(const std::string& path, bool overwrite, FileFormat format, bo
 
 void File::Flush() { Check(H5Fflush(id(), H5F_SCOPE_GLOBAL), Where(), "cannot flush"); }
 
-std::vector<std::string> RootAttributeNamesToRead(const File& file,
-                                                  const std::vector<std::string>& expected) {
-  if (file.Format() == FileFormat::kChecksummed) return file.AttributeNames();
-  std::vector<std::string> present;
-  for (const std::string& name : expected) {
-    if (file.HasAttribute(name)) present.push_back(name);
+namespace {
+
+// A root attribute of a fixed-size, non-string type, byte for byte through its native type.
+void CopyNumericAttribute(const Attribute& attribute, const std::string& name, File* target) {
+  const std::string& where = attribute.Where();
+  const Handle stored(Check(H5Aget_type(attribute.id()), where, "cannot get the type"),
+                      Handle::Kind::kDatatype);
+  if (Check(H5Tdetect_class(stored.id(), H5T_VLEN), where, "cannot inspect the type") > 0) {
+    Fail(where, "an attribute of variable-length type, which no table carries");
   }
-  return present;
+  const Handle native(
+      Check(H5Tget_native_type(stored.id(), H5T_DIR_ASCEND), where, "cannot get a native type"),
+      Handle::Kind::kDatatype);
+  const Dataspace space = attribute.Space();
+  const auto count = static_cast<std::size_t>(space.NumElements());
+  const std::size_t width = H5Tget_size(native.id());
+  RequireReadable(count, width, where);
+  std::vector<unsigned char> buffer(count * width);
+  Check(H5Aread(attribute.id(), native.id(), buffer.data()), where, "cannot read");
+  const std::string target_where = AttributeWhere(target->Where(), name);
+  const Handle copy(Check(H5Acreate2(target->id(), name.c_str(), stored.id(), space.id(),
+                                     H5P_DEFAULT, H5P_DEFAULT),
+                          target_where, "cannot create"),
+                    Handle::Kind::kAttribute);
+  Check(H5Awrite(copy.id(), native.id(), buffer.data()), target_where, "cannot write");
+}
+
+}  // namespace
+
+void CopyContents(const File& source, File* target) {
+  EnsureSilenced();
+  for (const std::string& name : source.AttributeNames()) {
+    const Attribute attribute = source.OpenAttribute(name);
+    if (attribute.Type().Class() != TypeClass::kString) {
+      CopyNumericAttribute(attribute, name, target);
+    } else if (attribute.Space().Rank() == 0) {
+      target->WriteStringAttribute(name, attribute.ReadString());
+    } else {
+      target->WriteStringArrayAttribute(name, attribute.ReadStrings());
+    }
+  }
+  for (const std::string& name : source.MemberNames()) {
+    Check(H5Ocopy(source.id(), name.c_str(), target->id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+          source.Where() + name, "cannot copy");
+  }
 }
 
 FileFormat File::Format() const {

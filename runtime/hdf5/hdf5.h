@@ -170,6 +170,7 @@ class Attribute {
 
   /// "<file>:<object path>@<attribute name>", used in error messages.
   const std::string& Where() const noexcept { return where_; }
+  Id id() const noexcept { return handle_.id(); }
   Datatype Type() const;
   Dataspace Space() const;
   /// A scalar string (fixed or variable length); throws if the attribute is not one string.
@@ -387,10 +388,16 @@ class File : public Group {
  public:
   enum class Mode { kReadOnly, kReadWrite };
 
+  /// Whether Open reads a file in HDF5's earliest format (kAllow only where a crash of HDF5 is
+  /// contained: a child process, or tests of such files).
+  enum class Earliest { kRefuse, kAllow };
+
   /// Opens an existing file after CheckSeal (seal.h): throws Error when it does not exist, is
-  /// damaged (does not match its seal) or is not an HDF5 file. A file opened for writing must
+  /// damaged (does not match its seal) or is not an HDF5 file, and EarliestFormatError for a
+  /// file in HDF5's earliest format unless `earliest` allows it. A file opened for writing must
   /// be sealed again (SealFile) once closed.
-  static File Open(const std::string& path, Mode mode = Mode::kReadOnly);
+  static File Open(const std::string& path, Mode mode = Mode::kReadOnly,
+                   Earliest earliest = Earliest::kRefuse);
   /// Creates a file; with overwrite false, fails if the file exists. `sealed`: with an empty
   /// user block of kUserBlockSize bytes for SealFile to fill once the file is closed.
   static File Create(const std::string& path, bool overwrite = true,
@@ -412,11 +419,10 @@ class File : public Group {
   bool sealed_ = false;
 };
 
-/// The names of the root attributes to read: all of them where the file's metadata carries
-/// checksums; in the earliest format only those of `expected` that exist, looked up by name.
-/// HDF5 1.10 iterating the attribute messages of a damaged, unchecksummed object header can
-/// read freed memory and crash (found by fuzzing); a lookup by name takes another path.
-std::vector<std::string> RootAttributeNamesToRead(const File& file,
-                                                  const std::vector<std::string>& expected);
+/// Copies every member of `source`'s root group (with everything below it, through H5Ocopy)
+/// and every root attribute into `target`: a table in another file format, with variable-length
+/// string attributes of the root rewritten fixed-length (fixed strings live in the object
+/// header, which the checksummed format protects).
+void CopyContents(const File& source, File* target);
 
 }  // namespace wrc::h5

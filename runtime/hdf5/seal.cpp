@@ -120,7 +120,11 @@ SealStatus CheckSeal(const std::string& path) {
   const std::size_t head = ReadAt(fd, path, block.data(), block.size(), 0);
   if (head >= sizeof kHdf5Signature - 1 &&
       std::memcmp(block.data(), kHdf5Signature, sizeof kHdf5Signature - 1) == 0) {
-    return SealStatus::kUnsealed;
+    // The superblock's version byte follows the signature (HDF5 file format specification,
+    // "Superblock"); versions 0 and 1 carry no metadata checksums.
+    const auto version = static_cast<unsigned char>(block[sizeof kHdf5Signature - 1]);
+    return head > sizeof kHdf5Signature - 1 && version >= 2 ? SealStatus::kUnsealed
+                                                            : SealStatus::kUnsealedEarliest;
   }
   if (head < block.size() || std::memcmp(block.data(), kMagic, sizeof kMagic - 1) != 0) {
     // HDF5's signature right after the user block: a sealed table whose seal is damaged.

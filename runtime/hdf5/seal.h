@@ -26,14 +26,23 @@ class SealError : public Error {
   using Error::Error;
 };
 
-enum class SealStatus {
-  kIntact,    ///< Sealed, and every byte matches its seal.
-  kUnsealed,  ///< An HDF5 file from before seals: HDF5's signature at byte 0.
+/// A file in HDF5's earliest format (superblock version 0 or 1: no metadata checksums), which
+/// File::Open refuses unless asked to read it: HDF5 1.10 can crash on a damaged byte of it.
+class EarliestFormatError : public Error {
+ public:
+  using Error::Error;
 };
 
-/// Checks a file before HDF5 opens it: kIntact or kUnsealed. Throws SealError naming the file
-/// when it is damaged (its bytes do not match its seal, or the seal itself is damaged), and
-/// Error when it is neither sealed nor HDF5 or cannot be read.
+enum class SealStatus {
+  kIntact,    ///< Sealed, and every byte matches its seal.
+  kUnsealed,  ///< An HDF5 file from before seals, with metadata checksums: signature at byte 0.
+  /// An HDF5 file from before seals in HDF5's earliest format (superblock version 0 or 1).
+  kUnsealedEarliest,
+};
+
+/// Checks a file before HDF5 opens it: kIntact, kUnsealed or kUnsealedEarliest. Throws SealError
+/// naming the file when it is damaged (its bytes do not match its seal, or the seal itself is
+/// damaged), and Error when it is neither sealed nor HDF5 or cannot be read.
 SealStatus CheckSeal(const std::string& path);
 
 }  // namespace wrc::h5

@@ -53,23 +53,4 @@ enum class StoredStatus : std::int8_t { kOk = 0, kNoContact = 1, kNotConverged =
 inline constexpr int kStoredStatusCount = 4;
 inline constexpr const char* kStatusMeaning = "0 ok, 1 no contact, 2 not converged, 3 error";
 
-/// The root attributes a table may carry. Readers of tables in HDF5's earliest format read
-/// these by name only (h5::RootAttributeNamesToRead).
-inline const std::vector<std::string>& RootAttributeNames() {
-  static const std::vector<std::string> names = {kFormat,
-                                                 kFormatVersionAttribute,
-                                                 kWrcVersion,
-                                                 kCreated,
-                                                 kScene,
-                                                 kRailProfileSha256,
-                                                 kWheelProfileSha256,
-                                                 kZWarmStart,
-                                                 kWarningsCount,
-                                                 kRefineTarget,
-                                                 kRefinePasses,
-                                                 kRefineStop,
-                                                 kRefineEstimatedError};
-  return names;
-}
-
 }  // namespace wrc::schema

@@ -21,6 +21,7 @@
 #include "tests/generator/generator_test_util.h"
 #include "tests/runtime/table_writer.h"
 #include "wrc/generator/generator.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::test {
 namespace {
@@ -30,7 +31,7 @@ TableContent ValidTable() {
   content.axes = {{"y", {-2.0, -1.0, 0.0, 1.5, 2.0}, "mm"}, {"roll", {-0.002, 0.0, 0.002}, "rad"}};
   content.outputs = {"fy", "fx"};
   content.function = [](int k, const std::vector<double>& x) { return 100.0 * k + x[0]; };
-  content.format = h5::FileFormat::kEarliest;
+  content.format = h5::FileFormat::kChecksummed;
   return content;
 }
 
@@ -123,49 +124,150 @@ TEST(CliDamagedTable, OptionalObjectOfTheWrongKind) {
   EXPECT_NE(result.err.find("solve_time_s: cannot be opened"), std::string::npos) << result.err;
 }
 
-// One byte of the float64 datatype messages changed, the size 8 read as 65544.
-TEST(CliDamagedTable, FloatOfAbsurdSize) {
-  ScratchDir dir("damaged_float_size");
-  const fs::path table = dir / "float.h5";
-  WriteTable(table.string(), ValidTable());
-  std::vector<char> bytes;
-  {
-    std::ifstream in(table, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  const std::vector<char> message = {0x11, 0x20, 0x3f, 0x00, 0x08, 0x00, 0x00, 0x00};
+// ---- tables written before seals, and `wrc upgrade` ------------------------------------------
+
+CommandResult Upgrade(const fs::path& table, const fs::path& output) {
+  return RunCommand(
+      Quoted(WrcBinary()) + " upgrade " + Quoted(table.string()) + " -o " + Quoted(output.string()),
+      table.parent_path());
+}
+
+std::vector<char> ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+void WriteBytes(const fs::path& path, const std::vector<char>& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// Every occurrence of `pattern` with the byte at `offset` in it set to `value`; how many.
+int Patch(std::vector<char>* bytes, const std::vector<char>& pattern, std::size_t offset,
+          char value) {
   int patched = 0;
-  for (auto it = bytes.begin();
-       (it = std::search(it, bytes.end(), message.begin(), message.end())) != bytes.end(); ++it) {
-    *(it + 6) = 0x01;
+  for (auto it = bytes->begin();
+       (it = std::search(it, bytes->end(), pattern.begin(), pattern.end())) != bytes->end(); ++it) {
+    *(it + static_cast<std::ptrdiff_t>(offset)) = value;
     ++patched;
   }
-  ASSERT_GT(patched, 0);
-  std::ofstream(table, std::ios::binary | std::ios::trunc)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  ExpectRefused(table, "not a standard");
+  return patched;
+}
+
+// Both outputs at points inside ValidTable's grid, through the runtime.
+std::vector<double> Values(const fs::path& table) {
+  const Table opened(table.string());
+  std::vector<double> values;
+  for (const double y : {-1.7, 0.3, 1.9}) {
+    for (const double roll : {-0.0015, 0.001}) {
+      std::vector<double> out(2);
+      opened.eval(std::vector<double>{y, roll}.data(), out.data());
+      values.insert(values.end(), out.begin(), out.end());
+    }
+  }
+  return values;
+}
+
+// A table in HDF5's earliest format, with the variable-length string attributes tables had
+// then: every command refuses it naming `wrc upgrade`, which rewrites it sealed, with the same
+// numbers as the same table written today; an unsealed checksummed table is sealed the same way.
+TEST(CliUpgrade, OlderTablesComeOutSealedWithTheSameNumbers) {
+  ScratchDir dir("upgrade_older");
+  const fs::path current = dir / "current.h5";
+  TableContent content = ValidTable();
+  content.sealed = true;
+  WriteTable(current.string(), content);
+  const fs::path earliest = dir / "earliest.h5";
+  content.sealed = false;
+  content.format = h5::FileFormat::kEarliest;
+  WriteTable(earliest.string(), content);
+  {
+    h5::File file =
+        h5::File::Open(earliest.string(), h5::File::Mode::kReadWrite, h5::File::Earliest::kAllow);
+    const auto variable = h5::StringStorage::kVariable;
+    file.WriteStringAttribute("format", "wrc-table", variable);
+    file.OpenGroup("axes").WriteStringArrayAttribute("order", {"y", "roll"}, variable);
+    file.OpenGroup("outputs").WriteStringArrayAttribute("order", {"fy", "fx"}, variable);
+  }
+  ExpectRefused(earliest, "wrc upgrade " + earliest.string());
+  const fs::path unsealed = dir / "unsealed.h5";
+  WriteTable(unsealed.string(), ValidTable());
+  for (const fs::path& old : {earliest, unsealed}) {
+    SCOPED_TRACE(old.string());
+    const fs::path upgraded = dir / ("upgraded_" + old.filename().string());
+    const CommandResult result = Upgrade(old, upgraded);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(h5::CheckSeal(upgraded.string()), h5::SealStatus::kIntact);
+    EXPECT_EQ(Table(upgraded.string()).warning(), "");
+    EXPECT_EQ(Values(upgraded), Values(current));
+    EXPECT_EQ(Table(upgraded.string()).attribute("scene"),
+              Table(current.string()).attribute("scene"));
+  }
+  EXPECT_NE(Table(unsealed.string()).warning(), "");
+  // Never onto its input; nothing left under the output's name after a failure.
+  const CommandResult onto_itself = Upgrade(unsealed, unsealed);
+  EXPECT_EQ(onto_itself.exit_code, 2) << onto_itself.err;
+  EXPECT_NE(Table(unsealed.string()).warning(), "");
 }
 
 // Damaged tables in HDF5's earliest format (no metadata checksums) found by mutating one: HDF5
-// 1.10 crashes reading them (a B-tree header, an attribute lookup by name, a compact dataset
-// read past its buffer). The commands read such files in a child process first and report the
-// crash as damage; plot reads the same way. Whether HDF5 crashes on them depends on what its heap
-// holds (the same file may instead give HDF5's own error), so either is accepted: exit 2 with a
-// message naming the file, never a signal.
-TEST(CliDamagedTable, EarliestFormatFilesThatCrashHdf5AreErrors) {
+// 1.10 crashes reading them (a B-tree header, an attribute lookup by name, a compact dataset read
+// past its buffer, an attribute iteration), or its own checks stop it. Every command refuses them
+// before HDF5 reads a byte; `wrc upgrade` reads them in a child process, and a crash there, or
+// HDF5's error, is exit 2 naming the file, with no output file left.
+TEST(CliUpgrade, EarliestFormatFilesThatCrashHdf5AreErrors) {
   const fs::path dir = fs::path(WRC_SOURCE_DIR) / "tests" / "runtime" / "damaged";
   for (const char* name : {"crashes_hdf5_btree_header.h5", "crashes_hdf5_attribute_exists.h5",
-                           "crashes_hdf5_compact_read.h5"}) {
+                           "crashes_hdf5_compact_read.h5", "hdf5_attribute_iteration.h5",
+                           "hdf5_compact_overread.h5", "hdf5_huge_allocation.h5"}) {
     SCOPED_TRACE(name);
     ScratchDir scratch("damaged_crashes_hdf5");
     const fs::path table = scratch / name;
     fs::copy_file(dir / name, table);
-    ExpectRefused(table, name);
+    ExpectRefused(table, "wrc upgrade");
     const CommandResult plot = RunCommand(
         Quoted(WrcBinary()) + " plot table " + Quoted(table.string()) + " --output fy --x y",
         scratch.path());
     EXPECT_EQ(plot.exit_code, 2) << plot.err;
-    EXPECT_NE(plot.err.find(name), std::string::npos) << plot.err;
+    EXPECT_NE(plot.err.find("wrc upgrade"), std::string::npos) << plot.err;
+    const CommandResult upgrade = Upgrade(table, scratch / "new.h5");
+    EXPECT_EQ(upgrade.exit_code, 2) << upgrade.err;
+    EXPECT_NE(upgrade.err.find(name), std::string::npos) << upgrade.err;
+    EXPECT_FALSE(fs::exists(scratch / "new.h5"));
+    EXPECT_FALSE(fs::exists(scratch / "new.h5.tmp"));
+  }
+}
+
+// Earliest-format tables with one damaged byte that HDF5 copies faithfully: the float64
+// datatype's size read as 65544, and the shuffle filter's element size as 2 (pipeline message:
+// id 2, name length 8, flags 1, one parameter, "shuffle\0", then the element size 8). The
+// upgrade's own read of the copy refuses them.
+TEST(CliUpgrade, DamageTheCopyKeepsIsRefused) {
+  const std::vector<char> float64 = {0x11, 0x20, 0x3f, 0x00, 0x08, 0x00, 0x00, 0x00};
+  const std::vector<char> shuffle = {0x02, 0x00, 0x08, 0x00, 0x01, 0x00, 0x01, 0x00, 's',  'h',
+                                     'u',  'f',  'f',  'l',  'e',  0x00, 0x08, 0x00, 0x00, 0x00};
+  struct Damage {
+    const std::vector<char>& pattern;
+    std::size_t offset;
+    char value;
+    const char* problem;
+  };
+  for (const Damage& damage :
+       {Damage{float64, 6, 0x01, "not a standard"}, Damage{shuffle, 16, 0x02, "filter"}}) {
+    SCOPED_TRACE(damage.problem);
+    ScratchDir dir("upgrade_damaged");
+    TableContent content = ValidTable();
+    content.format = h5::FileFormat::kEarliest;
+    content.axis_storage = h5::CompressedChecked();
+    const fs::path table = dir / "old.h5";
+    WriteTable(table.string(), content);
+    std::vector<char> bytes = ReadBytes(table);
+    ASSERT_GT(Patch(&bytes, damage.pattern, damage.offset, damage.value), 0);
+    WriteBytes(table, bytes);
+    const CommandResult upgrade = Upgrade(table, dir / "new.h5");
+    EXPECT_EQ(upgrade.exit_code, 2) << upgrade.err;
+    EXPECT_NE(upgrade.err.find(damage.problem), std::string::npos) << upgrade.err;
+    EXPECT_FALSE(fs::exists(dir / "new.h5"));
   }
 }
 

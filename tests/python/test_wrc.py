@@ -131,6 +131,10 @@ class PythonModuleTest(unittest.TestCase):
         self.assertFalse(t.status.any())
         self.assertIn("velocity = 20000.0", t.attribute("scene"))
 
+    def test_an_unsealed_table_loads_with_a_warning_naming_the_upgrade(self):
+        # The test tables are written without a seal, as tables were before seals.
+        self.assertIn("wrc upgrade", wrc.Table(self.small_path).warning)
+
     def test_what_is_not_a_real_number_or_path_is_refused(self):
         # None would become NaN and 1j lose its imaginary part under a silent cast
         for bad in ([None, 0.0, 0.0, 0.0], [1j, 0.0, 0.0, 0.0], ["a", "b", "c", "d"]):

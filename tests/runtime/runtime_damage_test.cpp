@@ -109,41 +109,31 @@ TEST(RuntimeDamage, FilesThatCrashedHdf5AreErrors) {
   }
 }
 
-// In the earliest format the root attributes are read by name: those of the layout are all
-// there; in the checksummed format every string attribute is, extensions included.
-TEST(RuntimeDamage, EarliestFormatReadsTheLayoutsAttributesByName) {
-  for (const FileFormat format : {FileFormat::kEarliest, FileFormat::kChecksummed}) {
-    ScratchFile scratch("attributes");
-    wrc::test::WriteTable(scratch.path(), SmallTable(format));
-    {
-      wrc::h5::File file = wrc::h5::File::Open(scratch.path(), wrc::h5::File::Mode::kReadWrite);
-      file.WriteStringAttribute("my_note", "kept");
-    }
-    wrc_table* table = nullptr;
-    ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &table), 0) << wrc_last_error();
-    EXPECT_STREQ(wrc_table_attribute(table, "wrc_version"), "0.1.0-test");
-    EXPECT_NE(wrc_table_attribute(table, "scene"), nullptr);
-    const char* note = wrc_table_attribute(table, "my_note");
-    if (format == FileFormat::kChecksummed) {
-      EXPECT_STREQ(note, "kept");
-    } else {
-      EXPECT_EQ(note, nullptr);
-    }
-    wrc_table_close(table);
-  }
-}
-
-TEST(RuntimeDamage, FloatOfAbsurdSizeIsAnErrorInTheEarliestFormat) {
-  ScratchFile scratch("float-size");
-  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kEarliest));
-  ASSERT_EQ(Evaluate(scratch.path()).code, 0) << wrc_last_error();
-  std::vector<char> bytes = ReadBytes(scratch.path());
-  ASSERT_GT(PatchFloatSizes(&bytes), 0);
-  WriteBytes(scratch.path(), bytes);
-  const Evaluation damaged = Evaluate(scratch.path());
-  EXPECT_EQ(damaged.code, WRC_ERR_FORMAT) << wrc_last_error();
-  EXPECT_NE(std::string(wrc_last_error()).find("not a standard type"), std::string::npos)
+// A table in HDF5's earliest format (no metadata checksums) never reaches HDF5 in the runtime:
+// refused, naming the command that converts it. An unsealed table in the checksummed format
+// loads, with a warning naming the same command; a sealed one has none.
+TEST(RuntimeDamage, EarliestFormatIsRefusedAndUnsealedLoadsWithAWarning) {
+  ScratchFile earliest("earliest");
+  wrc::test::WriteTable(earliest.path(), SmallTable(FileFormat::kEarliest));
+  wrc_table* table = nullptr;
+  EXPECT_EQ(wrc_table_open(earliest.path().c_str(), &table), WRC_ERR_FORMAT);
+  EXPECT_NE(std::string(wrc_last_error()).find("wrc upgrade " + earliest.path()), std::string::npos)
       << wrc_last_error();
+
+  ScratchFile unsealed("unsealed");
+  wrc::test::WriteTable(unsealed.path(), SmallTable(FileFormat::kChecksummed));
+  ASSERT_EQ(wrc_table_open(unsealed.path().c_str(), &table), 0) << wrc_last_error();
+  ASSERT_NE(wrc_table_warning(table), nullptr);
+  EXPECT_NE(std::string(wrc_table_warning(table)).find("wrc upgrade"), std::string::npos);
+  wrc_table_close(table);
+
+  ScratchFile sealed("sealed");
+  TableContent content = SmallTable(FileFormat::kChecksummed);
+  content.sealed = true;
+  wrc::test::WriteTable(sealed.path(), content);
+  ASSERT_EQ(wrc_table_open(sealed.path().c_str(), &table), 0) << wrc_last_error();
+  EXPECT_EQ(wrc_table_warning(table), nullptr);
+  wrc_table_close(table);
 }
 
 TEST(RuntimeDamage, FloatOfAbsurdSizeIsAnErrorInTheChecksummedFormat) {
@@ -153,48 +143,6 @@ TEST(RuntimeDamage, FloatOfAbsurdSizeIsAnErrorInTheChecksummedFormat) {
   ASSERT_GT(PatchFloatSizes(&bytes), 0);
   WriteBytes(scratch.path(), bytes);
   EXPECT_LT(Evaluate(scratch.path()).code, 0);
-}
-
-TEST(RuntimeDamage, ShuffleOfTheWrongElementSizeIsAnError) {
-  ScratchFile scratch("shuffle");
-  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kEarliest));
-  // Pipeline message entry of the shuffle filter in the earliest format: id 2, name length 8,
-  // flags 1 (optional), one parameter, "shuffle\0", then the element size 8.
-  const std::vector<char> shuffle = {0x02, 0x00, 0x08, 0x00, 0x01, 0x00, 0x01, 0x00, 's',  'h',
-                                     'u',  'f',  'f',  'l',  'e',  0x00, 0x08, 0x00, 0x00, 0x00};
-  std::vector<char> bytes = ReadBytes(scratch.path());
-  int patched = 0;
-  for (auto it = bytes.begin();
-       (it = std::search(it, bytes.end(), shuffle.begin(), shuffle.end())) != bytes.end(); ++it) {
-    *(it + 16) = 0x02;
-    ++patched;
-  }
-  ASSERT_GT(patched, 0);
-  WriteBytes(scratch.path(), bytes);
-  const Evaluation damaged = Evaluate(scratch.path());
-  EXPECT_EQ(damaged.code, WRC_ERR_FORMAT) << wrc_last_error();
-  EXPECT_NE(std::string(wrc_last_error()).find("filter"), std::string::npos) << wrc_last_error();
-}
-
-// Tables written before: HDF5's earliest format with variable-length string attributes (what
-// the writer used then) still open and give the same numbers.
-TEST(RuntimeDamage, EarliestFormatWithVariableLengthStringsStillOpens) {
-  ScratchFile current("current");
-  wrc::test::WriteTable(current.path(), SmallTable(FileFormat::kChecksummed));
-  ScratchFile old("old");
-  wrc::test::WriteTable(old.path(), SmallTable(FileFormat::kEarliest));
-  {
-    wrc::h5::File file = wrc::h5::File::Open(old.path(), wrc::h5::File::Mode::kReadWrite);
-    const auto variable = wrc::h5::StringStorage::kVariable;
-    file.WriteStringAttribute("format", "wrc-table", variable);
-    file.OpenGroup("axes").WriteStringArrayAttribute("order", {"y", "roll"}, variable);
-    file.OpenGroup("outputs").WriteStringArrayAttribute("order", {"fy", "fx"}, variable);
-  }
-  const Evaluation expected = Evaluate(current.path());
-  ASSERT_EQ(expected.code, 0) << wrc_last_error();
-  const Evaluation result = Evaluate(old.path());
-  ASSERT_EQ(result.code, 0) << wrc_last_error();
-  EXPECT_EQ(result.values, expected.values);
 }
 
 // Every byte of a checksummed table, one at a time: an error, or exactly the intact numbers.

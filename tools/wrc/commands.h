@@ -71,6 +71,9 @@ void AddGenerateCommand(CLI::App& app, int* exit_code);
 /// Registers `wrc info TABLE.h5 [--json]`: axes, outputs, status counts, provenance.
 void AddInfoCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc upgrade OLD.h5 -o NEW.h5`: a table from before seals, checksummed and sealed.
+void AddUpgradeCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 

@@ -11,7 +11,6 @@
 
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
-#include "tools/wrc/table_probe.h"
 #include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
 
@@ -152,7 +151,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
   std::cout << (info.sealed ? "  seal                  intact (a SHA-256 of every byte, checked "
                               "before HDF5 reads the file)\n"
                             : "  seal                  none: written before seals, so damage is "
-                              "only found as HDF5 reads it; regenerate to seal it\n");
+                              "only found as HDF5 reads it; seal it with `wrc upgrade`\n");
   for (const char* name :
        {"wrc_version", "created", "rail_profile_sha256", "wheel_profile_sha256", "z_warm_start"}) {
     const std::string value = Attribute(info, name);
@@ -218,7 +217,6 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
     try {
       // The runtime's validation first (types, shapes, axes, values, format version): what
       // info reads afterwards has passed every check a simulator's open makes.
-      ProbeUncheckedTable(*path);
       const Table validated(*path);
       const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {

@@ -11,7 +11,6 @@
 
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/plot.h"
-#include "tools/wrc/table_probe.h"
 #include "wrc/core/errors.h"
 #include "wrc/runtime.hpp"
 
@@ -188,7 +187,6 @@ WrittenFiles PlotTable(const TablePlotRequest& r, const fs::path& out) {
   if (!fs::is_regular_file(r.table)) {
     throw InputError(r.table.string() + ": no such table file");
   }
-  ProbeUncheckedTable(r.table.string());
   Table table(r.table.string());
   table.set_interpolation(r.cubic ? Interpolation::kCubic : Interpolation::kLinear);
   const int output = OutputIndex(table, r.output);

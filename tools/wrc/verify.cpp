@@ -18,7 +18,6 @@
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
-#include "tools/wrc/table_probe.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/profile.h"
 #include "wrc/core/wheelrail.h"
@@ -293,8 +292,10 @@ StoredScene::~StoredScene() {
 }
 
 std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
-  ProbeUncheckedTable(table.string());
   const Table validated(table.string());  // the runtime's checks, before any other read
+  if (const std::string warning = validated.warning(); !warning.empty()) {
+    std::cerr << "wrc verify: warning: " << warning << '\n';
+  }
   auto stored = std::make_unique<StoredScene>();
   const h5::File file = h5::File::Open(table.string());
   const std::string text = file.ReadStringAttribute("scene");
