@@ -127,6 +127,17 @@ void CheckDimensions(const h5::Dataset& dataset, const std::vector<std::string>&
   Invalid(where, "its dimensions are (" + listed + ") but /axes 'order' lists (" + ordered + ")");
 }
 
+// `name` in `group` is what the layout asks for: `missing` when absent, else why not (a link to
+// elsewhere is refused before anything follows it).
+void RequireKind(const h5::Group& group, const std::string& name, h5::LinkKind want,
+                 const std::string& where, const std::string& missing) {
+  const h5::LinkKind kind = group.Kind(name);
+  if (kind == want) return;
+  Invalid(where, kind == h5::LinkKind::kMissing
+                     ? missing
+                     : h5::KindMismatch(kind, want == h5::LinkKind::kGroup ? "group" : "dataset"));
+}
+
 // The node values obey the limits of include/wrc/runtime.h: finite, strictly ascending, and
 // spaced so that no step, span or reciprocal overflows or loses the position within a cell.
 void CheckAxisValues(const std::vector<double>& values, const std::string& where) {
@@ -158,9 +169,8 @@ Axis ReadAxis(const h5::Group& axes_group, const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos) {
     Invalid(axes_group.Where(), "axis name \"" + name + "\" in 'order' is not a valid name");
   }
-  if (axes_group.Kind(name) != h5::LinkKind::kDataset) {
-    Invalid(where, "listed in /axes 'order' but there is no such dataset");
-  }
+  RequireKind(axes_group, name, h5::LinkKind::kDataset, where,
+              "listed in /axes 'order' but there is no such dataset");
   const h5::Dataset dataset = axes_group.OpenDataset(name);
   const std::vector<h5::Size> shape = dataset.Shape();
   if (shape.size() != 1) Invalid(where, "must be 1-D, has shape " + ShapeText(shape));
@@ -284,8 +294,7 @@ Table Table::Load(const std::string& path) {
   }
 
   // Axes, in the order the /axes attribute 'order' gives.
-  if (file.Kind(schema::kAxes) != h5::LinkKind::kGroup)
-    Invalid(where + "/axes", "group is missing");
+  RequireKind(file, schema::kAxes, h5::LinkKind::kGroup, where + "/axes", "group is missing");
   const h5::Group axes_group = file.OpenGroup(schema::kAxes);
   if (!axes_group.HasAttribute(schema::kOrder))
     Invalid(where + "/axes", "attribute 'order' is missing");
@@ -318,9 +327,7 @@ Table Table::Load(const std::string& path) {
   table.IndexAxes();
 
   // Outputs: the /outputs attribute 'order' when present, else the group's member order.
-  if (file.Kind(schema::kOutputs) != h5::LinkKind::kGroup) {
-    Invalid(where + "/outputs", "group is missing");
-  }
+  RequireKind(file, schema::kOutputs, h5::LinkKind::kGroup, where + "/outputs", "group is missing");
   const h5::Group outputs_group = file.OpenGroup(schema::kOutputs);
   std::vector<std::string> output_names = outputs_group.MemberNames();
   if (outputs_group.HasAttribute(schema::kOrder)) {
@@ -344,7 +351,7 @@ Table Table::Load(const std::string& path) {
   for (std::size_t k = 0; k < n_out; ++k) {
     const std::string& name = output_names[k];
     const std::string output_where = where + "/outputs/" + name;
-    if (outputs_group.Kind(name) != h5::LinkKind::kDataset) Invalid(output_where, "not a dataset");
+    RequireKind(outputs_group, name, h5::LinkKind::kDataset, output_where, "missing");
     const h5::Dataset dataset = outputs_group.OpenDataset(name);
     const std::vector<h5::Size> shape = dataset.Shape();
     if (shape != grid_shape) {
@@ -362,9 +369,8 @@ Table Table::Load(const std::string& path) {
   }
 
   // Status of every node.
-  if (file.Kind(schema::kStatus) != h5::LinkKind::kDataset) {
-    Invalid(where + "/status", "dataset is missing");
-  }
+  RequireKind(file, schema::kStatus, h5::LinkKind::kDataset, where + "/status",
+              "dataset is missing");
   const h5::Dataset status = file.OpenDataset(schema::kStatus);
   if (status.Shape() != grid_shape) {
     Invalid(where + "/status", "shape " + ShapeText(status.Shape()) +
@@ -380,7 +386,14 @@ Table Table::Load(const std::string& path) {
   for (std::size_t node = 0; node < table.num_nodes_; ++node) {
     if (table.status_[node] != kOkStatus) node_flags[node] |= kCellStatus;
     for (std::size_t k = 0; k < n_out; ++k) {
-      if (std::isfinite(table.values_[node * n_out + k])) continue;
+      const double value = table.values_[node * n_out + k];
+      if (std::abs(value) > WRC_VALUE_MAX_MAGNITUDE && std::isfinite(value)) {
+        std::ostringstream text;
+        text << "value " << value << " at node " << NodeText(node, table.axes_, table.node_stride_)
+             << " is beyond ±" << WRC_VALUE_MAX_MAGNITUDE;
+        Invalid(where + "/outputs/" + output_names[k], text.str());
+      }
+      if (std::isfinite(value)) continue;
       if (table.status_[node] == kOkStatus) {
         Invalid(where + "/outputs/" + output_names[k],
                 "non-finite value at node " + NodeText(node, table.axes_, table.node_stride_) +

@@ -93,6 +93,10 @@ typedef struct wrc_table wrc_table;
 #define WRC_AXIS_MAX_MAGNITUDE 1e30
 #define WRC_AXIS_MIN_STEP 1e-30
 #define WRC_AXIS_MIN_RELATIVE_STEP 1e-9
+/** Every finite output value at a node lies within ±WRC_VALUE_MAX_MAGNITUDE (forces in N and
+ *  moments in N·mm are below 1e12): cubic lookups divide differences of values by steps down to
+ *  WRC_AXIS_MIN_STEP, which stays finite (below 1e61) only for values so bounded. */
+#define WRC_VALUE_MAX_MAGNITUDE 1e30
 /** @} */
 
 /* ---------------------------------------------------------------------------------------------

@@ -692,6 +692,17 @@ void Dataset::BlockRaw(bool write, ElementType type, const std::vector<Size>& of
 // ---------------------------------------------------------------------------------------------
 // Group
 
+std::string KindMismatch(LinkKind kind, const std::string& what) {
+  switch (kind) {
+    case LinkKind::kMissing:
+      return "missing (no such " + what + ")";
+    case LinkKind::kLink:
+      return "a soft or external link, not a " + what + " stored in the file";
+    default:
+      return "not a " + what;
+  }
+}
+
 LinkKind Group::Kind(const std::string& name) const {
   EnsureSilenced();
   if (name.empty() || name.find('/') != std::string::npos) {
@@ -700,8 +711,11 @@ LinkKind Group::Kind(const std::string& name) const {
   if (Check(H5Lexists(id(), name.c_str(), H5P_DEFAULT), Where(), "cannot check for a link") <= 0) {
     return LinkKind::kMissing;
   }
+  H5L_info_t link{};
+  Check(H5Lget_info(id(), name.c_str(), &link, H5P_DEFAULT), Where(), "cannot inspect a link");
+  if (link.type != H5L_TYPE_HARD) return LinkKind::kLink;
   const hid_t object = H5Oopen(id(), name.c_str(), H5P_DEFAULT);
-  if (object < 0) {  // e.g. a dangling soft link
+  if (object < 0) {
     H5Eclear2(H5E_DEFAULT);
     return LinkKind::kOther;
   }
@@ -740,13 +754,33 @@ std::vector<std::string> Group::MemberNames() const {
   return names;
 }
 
+namespace {
+
+// A dataset's values must be in the file, in contiguous or chunked storage: external storage
+// (raw data in other files, even /dev/zero or a FIFO) and virtual datasets (mapped from other
+// datasets, filled silently where a source is missing) would give numbers the file's checksums
+// and seal never saw.
+void RequireStoredInFile(hid_t dataset, const std::string& where) {
+  const Handle plist(Check(H5Dget_create_plist(dataset), where, "cannot get the creation list"),
+                     Handle::Kind::kPropertyList);
+  const H5D_layout_t layout = H5Pget_layout(plist.id());
+  if (layout != H5D_CONTIGUOUS && layout != H5D_CHUNKED) {
+    Fail(where, layout == H5D_VIRTUAL ? "a virtual dataset, not values stored in the file"
+                                      : "storage other than contiguous or chunked");
+  }
+  if (Check(H5Pget_external_count(plist.id()), where, "cannot inspect the storage") > 0) {
+    Fail(where, "external storage (its values in other files), not values stored in the file");
+  }
+}
+
+}  // namespace
+
 Group Group::OpenGroup(const std::string& name) const {
   EnsureSilenced();
   const std::string path = ChildPath(name);
   const std::string where = file_ + ":" + path;
-  if (Kind(name) != LinkKind::kGroup) {
-    throw Error(where, Exists(name) ? "not a group" : "missing (no such group)");
-  }
+  const LinkKind kind = Kind(name);
+  if (kind != LinkKind::kGroup) throw Error(where, KindMismatch(kind, "group"));
   return Group(Handle(Check(H5Gopen2(id(), name.c_str(), H5P_DEFAULT), where, "cannot open group"),
                       Handle::Kind::kGroup),
                file_, path);
@@ -770,13 +804,14 @@ Dataset Group::OpenDataset(const std::string& name) const {
   EnsureSilenced();
   const std::string path = ChildPath(name);
   const std::string where = file_ + ":" + path;
-  if (Kind(name) != LinkKind::kDataset) {
-    throw Error(where, Exists(name) ? "not a dataset" : "missing (no such dataset)");
-  }
-  return Dataset(
+  const LinkKind kind = Kind(name);
+  if (kind != LinkKind::kDataset) throw Error(where, KindMismatch(kind, "dataset"));
+  Dataset dataset(
       Handle(Check(H5Dopen2(id(), name.c_str(), H5P_DEFAULT), where, "cannot open dataset"),
              Handle::Kind::kDataset),
       file_, path);
+  RequireStoredInFile(dataset.id(), where);
+  return dataset;
 }
 
 Dataset Group::CreateDataset(const std::string& name, ElementType type,

@@ -328,8 +328,12 @@ class Dataset : public Object {
                 const std::vector<Size>& count, void* values);
 };
 
-/// What a name in a group refers to.
-enum class LinkKind { kMissing, kGroup, kDataset, kOther };
+/// What a name in a group refers to. kLink: a soft or external link, which Kind never follows
+/// (a table holds its data; a link could name a missing object, another file or a FIFO).
+enum class LinkKind { kMissing, kGroup, kDataset, kLink, kOther };
+
+/// Why a name of that kind is not the `what` ("group", "dataset") asked for.
+std::string KindMismatch(LinkKind kind, const std::string& what);
 
 /// A group; File is the root group of a file.
 class Group : public Object {

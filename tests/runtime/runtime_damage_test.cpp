@@ -3,12 +3,15 @@
 // the intact file; never a crash or a different number.
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runtime/hdf5/hdf5.h"
@@ -219,3 +222,107 @@ TEST(RuntimeDamage, ASealedTableEditedMustBeSealedAgain) {
 }
 
 }  // namespace
+
+// Replaces /outputs/fy of a small table with what `make` creates there (through HDF5 itself, as
+// a hostile writer would), and returns the runtime's open: code and message.
+template <typename Make>
+std::pair<int, std::string> OpenWithReplacedOutput(const std::string& stem, Make make) {
+  ScratchFile scratch(stem);
+  wrc::test::WriteTable(scratch.path(), SmallTable(FileFormat::kChecksummed));
+  {
+    const hid_t file = H5Fopen(scratch.path().c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t outputs = H5Gopen2(file, "outputs", H5P_DEFAULT);
+    EXPECT_GE(H5Lmove(outputs, "fy", file, "fy_moved", H5P_DEFAULT, H5P_DEFAULT), 0);
+    make(file, outputs);
+    H5Gclose(outputs);
+    H5Fclose(file);
+  }
+  wrc_table* table = nullptr;
+  const int code = wrc_table_open(scratch.path().c_str(), &table);
+  wrc_table_close(table);
+  return {code, wrc_last_error()};
+}
+
+// A dataset of the table's grid shape (5 × 3 float64) made with the creation list `dcpl`.
+void CreateGridDataset(hid_t group, hid_t dcpl) {
+  const hsize_t dims[2] = {5, 3};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t dataset =
+      H5Dcreate2(group, "fy", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  EXPECT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Sclose(space);
+}
+
+// Values that live anywhere but in the file (a link elsewhere, raw data in another file or a
+// device, a virtual mapping onto a missing source) or in a storage the writer never uses are
+// refused by name, never read as zeros or as whatever the target holds.
+TEST(RuntimeDamage, ValuesNotStoredInTheFileAreRefused) {
+  struct Case {
+    const char* name;
+    std::function<void(hid_t, hid_t)> make;
+    const char* problem;
+  };
+  const std::vector<Case> cases = {
+      {"soft link",
+       [](hid_t, hid_t outputs) {
+         H5Lcreate_soft("/fy_moved", outputs, "fy", H5P_DEFAULT, H5P_DEFAULT);
+       },
+       "soft or external link"},
+      {"external link",
+       [](hid_t, hid_t outputs) {
+         H5Lcreate_external("/dev/zero", "/fy", outputs, "fy", H5P_DEFAULT, H5P_DEFAULT);
+       },
+       "soft or external link"},
+      {"external storage",
+       [](hid_t, hid_t outputs) {
+         const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+         H5Pset_external(dcpl, "/dev/zero", 0, 15 * 8);
+         CreateGridDataset(outputs, dcpl);
+         H5Pclose(dcpl);
+       },
+       "external storage"},
+      {"virtual dataset",
+       [](hid_t, hid_t outputs) {
+         const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+         const hsize_t dims[2] = {5, 3};
+         const hid_t space = H5Screate_simple(2, dims, nullptr);
+         H5Pset_virtual(dcpl, space, "missing.h5", "/fy", space);
+         CreateGridDataset(outputs, dcpl);
+         H5Sclose(space);
+         H5Pclose(dcpl);
+       },
+       "virtual dataset"},
+      {"compact storage",
+       [](hid_t, hid_t outputs) {
+         const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+         H5Pset_layout(dcpl, H5D_COMPACT);
+         CreateGridDataset(outputs, dcpl);
+         H5Pclose(dcpl);
+       },
+       "other than contiguous or chunked"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto [code, message] = OpenWithReplacedOutput("stored", c.make);
+    EXPECT_EQ(code, WRC_ERR_FORMAT) << message;
+    EXPECT_NE(message.find(c.problem), std::string::npos) << message;
+    EXPECT_NE(message.find("/outputs/fy"), std::string::npos) << message;
+  }
+}
+
+// Finite but beyond what a cubic lookup can difference: refused, not NaN with flags 0.
+TEST(RuntimeDamage, ValuesBeyondTheInterpolationsRangeAreRefused) {
+  for (const double huge : {1e308, -2e30}) {
+    ScratchFile scratch("huge");
+    TableContent content = SmallTable(FileFormat::kChecksummed);
+    content.function = [huge](int k, const std::vector<double>& x) {
+      return x[0] == 0.0 && x[1] == 0.0 && k == 1 ? huge : x[0];
+    };
+    wrc::test::WriteTable(scratch.path(), content);
+    wrc_table* table = nullptr;
+    EXPECT_EQ(wrc_table_open(scratch.path().c_str(), &table), WRC_ERR_FORMAT);
+    EXPECT_NE(std::string(wrc_last_error()).find("is beyond"), std::string::npos)
+        << wrc_last_error();
+  }
+}
