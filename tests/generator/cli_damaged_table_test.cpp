@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -122,6 +123,37 @@ TEST(CliDamagedTable, OptionalObjectOfTheWrongKind) {
       RunCommand(Quoted(WrcBinary()) + " info " + Quoted(table.string()), dir.path());
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_NE(result.err.find("solve_time_s: cannot be opened"), std::string::npos) << result.err;
+}
+
+// Refinement attributes that are not the JSON wrc generate writes (an array of strings, text
+// that is not UTF-8): `wrc info` names the attribute, and --json stays valid JSON.
+TEST(CliDamagedTable, RefinementAttributesThatAreNotItsJson) {
+  ScratchDir dir("damaged_refine_attributes");
+  const auto edits = std::vector<std::function<void(h5::File&)>>{
+      [](h5::File& f) {
+        f.WriteStringArrayAttribute("refine_target", {"a", "b"});
+      },
+      [](h5::File& f) { f.WriteStringAttribute("refine_target", "[1, 2]"); },
+      [](h5::File& f) {
+        f.WriteStringAttribute("refine_target", "{\"load_fraction\": 0.01}");
+        f.WriteStringAttribute("refine_passes", "\xff\xfe");
+      }};
+  for (std::size_t i = 0; i < edits.size(); ++i) {
+    SCOPED_TRACE(i);
+    const fs::path table =
+        WriteEdited(dir, "t" + std::to_string(i) + ".h5", ValidTable(), edits[i]);
+    for (const std::string command : {" info ", " info --json "}) {
+      const CommandResult result =
+          RunCommand(Quoted(WrcBinary()) + command + Quoted(table.string()), dir.path());
+      EXPECT_EQ(result.exit_code, 2) << command << result.err;
+      EXPECT_NE(result.err.find("refine_"), std::string::npos) << result.err;
+      EXPECT_EQ(result.err.find("json.exception"), std::string::npos) << result.err;
+      if (command == " info --json ") {
+        EXPECT_FALSE(nlohmann::json::parse(result.out, nullptr, false).is_discarded())
+            << result.out;
+      }
+    }
+  }
 }
 
 // ---- tables written before seals, and `wrc upgrade` ------------------------------------------

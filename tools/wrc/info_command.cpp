@@ -31,7 +31,11 @@ std::string Attribute(const TableInfo& info, const std::string& name) {
   return {};
 }
 
-nlohmann::json Refinement(const TableInfo& info);
+nlohmann::json Refinement(const std::string& path, const TableInfo& info);
+
+// Texts from the file (attributes, messages) need not be UTF-8: shown with U+FFFD in their place
+// rather than ending the output with the JSON library's exception.
+constexpr auto kReplaceInvalidUtf8 = nlohmann::json::error_handler_t::replace;
 
 json InfoJson(const std::string& path, const TableInfo& info) {
   json axes = json::array();
@@ -85,24 +89,36 @@ json InfoJson(const std::string& path, const TableInfo& info) {
        {{"rail", {{"name", info.rail_profile_name}, {"bytes", info.rail_profile_bytes}}},
         {"wheel", {{"name", info.wheel_profile_name}, {"bytes", info.wheel_profile_bytes}}}}},
       {"attributes", attributes},
-      {"refinement", Refinement(info)}};
+      {"refinement", Refinement(path, info)}};
+}
+
+// A refine_* attribute: the JSON text wrc generate writes, of the kind given; anything else is
+// refused by name rather than shown as invalid JSON or as a library's exception text.
+nlohmann::json RefineAttribute(const std::string& path, const TableInfo& info,
+                               const std::string& name, nlohmann::json::value_t kind) {
+  nlohmann::json value =
+      nlohmann::json::parse(Attribute(info, name), nullptr, /*allow_exceptions=*/false);
+  if (value.type() != kind) {
+    throw std::runtime_error(path + ":/@" + name + ": not the JSON " +
+                             nlohmann::json(kind).type_name() +
+                             " wrc generate writes there; the table is damaged or was edited");
+  }
+  return value;
 }
 
 // The refine_* attributes of a refined table as one JSON object (null for other tables).
-nlohmann::json Refinement(const TableInfo& info) {
-  const std::string target = Attribute(info, schema::kRefineTarget);
-  if (target.empty()) return nullptr;
-  const auto parse = [](const std::string& text) {
-    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  };
-  return {{"target", parse(target)},
-          {"passes", parse(Attribute(info, schema::kRefinePasses))},
+nlohmann::json Refinement(const std::string& path, const TableInfo& info) {
+  if (Attribute(info, schema::kRefineTarget).empty()) return nullptr;
+  using Kind = nlohmann::json::value_t;
+  return {{"target", RefineAttribute(path, info, schema::kRefineTarget, Kind::object)},
+          {"passes", RefineAttribute(path, info, schema::kRefinePasses, Kind::array)},
           {"stop", Attribute(info, schema::kRefineStop)},
-          {"estimated_error", parse(Attribute(info, schema::kRefineEstimatedError))}};
+          {"estimated_error",
+           RefineAttribute(path, info, schema::kRefineEstimatedError, Kind::object)}};
 }
 
-void PrintRefinement(const TableInfo& info) {
-  const nlohmann::json r = Refinement(info);
+void PrintRefinement(const std::string& path, const TableInfo& info) {
+  const nlohmann::json r = Refinement(path, info);
   if (r.is_null()) return;
   const nlohmann::json& target = r["target"];
   std::cout << "refinement: forces within " << 100 * target.value("load_fraction", 0.0)
@@ -175,7 +191,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
     }
     std::cout << '\n';
   }
-  PrintRefinement(info);
+  PrintRefinement(path, info);
   std::cout << "outputs (range over ok points):\n";
   for (const TableInfo::Output& output : info.outputs) {
     std::cout << "  " << std::left << std::setw(14) << output.name << std::setw(8) << output.unit
@@ -220,7 +236,7 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       const Table validated(*path);
       const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {
-        std::cout << InfoJson(*path, info).dump(1) << '\n';
+        std::cout << InfoJson(*path, info).dump(1, ' ', false, kReplaceInvalidUtf8) << '\n';
       } else {
         PrintHuman(*path, info);
       }
@@ -229,7 +245,9 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       // As wrc solve --json: a program reading stdout gets an error object, not nothing.
       std::cerr << "wrc info: error: " << e.what() << '\n';
       if (*as_json) {
-        std::cout << nlohmann::json{{"status", "error"}, {"message", e.what()}}.dump(1) << '\n';
+        std::cout << nlohmann::json{{"status", "error"}, {"message", e.what()}}.dump(
+                         1, ' ', false, kReplaceInvalidUtf8)
+                  << '\n';
       }
       *exit_code = kExitBadInput;
     }
