@@ -279,6 +279,31 @@ void SyncDirectoryOf(const std::filesystem::path& path) {
   ::close(fd);
 }
 
+// The most a journal of `header`'s run can hold: each point's record (its outputs, status, time
+// and a message of up to a few kilobytes) written up to eight times over by retries and resumes.
+// A journal beyond it is not one this run wrote, and is not read into memory.
+std::uint64_t MaxJournalBytes(const JournalHeader& header) {
+  constexpr std::uint64_t kRecordOverhead = 8192;
+  return 1024 + 8 * header.point_count * (8 * std::uint64_t{header.output_count} + kRecordOverhead);
+}
+
+// A journal is a regular file of bounded size: a link to a device (/dev/zero) or a FIFO would be
+// read without end.
+void RequireReadableJournal(int fd, const std::filesystem::path& path,
+                            const JournalHeader& header) {
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) FailErrno(path, "cannot inspect the journal");
+  if (!S_ISREG(info.st_mode)) {
+    throw InputError(path.string() +
+                     ": the journal is not a regular file; delete it to start over");
+  }
+  if (static_cast<std::uint64_t>(info.st_size) > MaxJournalBytes(header)) {
+    throw InputError(path.string() + ": the journal holds " + std::to_string(info.st_size) +
+                     " bytes, more than a run of " + std::to_string(header.point_count) +
+                     " points writes; it is not this run's journal, delete it to start over");
+  }
+}
+
 std::string ReadWholeFile(int fd, const std::filesystem::path& path) {
   std::string bytes;
   char buffer[1 << 16];
@@ -311,8 +336,14 @@ JournalWriter JournalWriter::Create(const std::filesystem::path& path,
 
 JournalWriter JournalWriter::Continue(const std::filesystem::path& path,
                                       const JournalHeader& header, JournalContents* contents) {
-  const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) FailErrno(path, "cannot open the journal");
+  try {
+    RequireReadableJournal(fd, path, header);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
   LockOrFail(fd, path);
   JournalWriter writer(fd, path);
   *contents = ParseJournal(ReadWholeFile(fd, path), path.string());

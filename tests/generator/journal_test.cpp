@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "generator/journal.h"
 #include "tests/generator/generator_test_util.h"
@@ -156,6 +158,27 @@ TEST(JournalWriter, RefusesAJournalOfAnotherRun) {
     const std::string message = e.what();
     EXPECT_NE(message.find("different"), std::string::npos) << message;
     EXPECT_NE(message.find("t.h5.journal"), std::string::npos) << message;
+  }
+}
+
+// A journal linked to a device that reads without end, or larger than any run of the header's
+// points writes (a sparse file here), is refused before it is read into memory.
+TEST(JournalWriter, ReadsAreBounded) {
+  ScratchDir dir("journal_bounded");
+  const auto device = dir / "device.journal";
+  std::filesystem::create_symlink("/dev/zero", device);
+  const auto huge = dir / "huge.journal";
+  JournalWriter::Create(huge, Header()).Close();
+  std::filesystem::resize_file(huge, std::uintmax_t{1} << 40);  // 1 TiB, sparse
+  for (const auto& [path, problem] : {std::pair{device, "not a regular file"},
+                                      std::pair{huge, "more than a run of 100 points"}}) {
+    JournalContents contents;
+    try {
+      JournalWriter::Continue(path, Header(), &contents);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -151,14 +151,15 @@ TEST(Verify, NothingVerifiedIsAnError) {
   EXPECT_EQ(report["exact_status"]["error"].get<int>(), 3);
 }
 
-// Counts and sizes that must be positive say so in words, not as CLI11's range of doubles.
-TEST(Verify, ANonPositiveSampleCountIsRefusedInWords) {
+// Sample counts outside 1 to a million say so in words, not as CLI11's range of doubles: a
+// billion would grow the report without bound.
+TEST(Verify, ASampleCountOutOfRangeIsRefusedInWords) {
   const wrc::test_support::ScratchDir dir("wrc_verify_cli");
-  for (const char* samples : {"0", "-3"}) {
+  for (const char* samples : {"0", "-3", "1000001", "1000000000"}) {
     const wrc::test_support::CommandResult run =
         wrc::test_support::RunCommand(Wrc() + " verify table.h5 --samples " + samples, dir.path());
     EXPECT_EQ(run.exit_code, 2) << run.err;
-    EXPECT_NE(run.err.find(std::string("--samples: must be greater than 0, is ") + samples),
+    EXPECT_NE(run.err.find(std::string("--samples: must be 1 to 1000000, is ") + samples),
               std::string::npos)
         << run.err;
     EXPECT_EQ(run.err.find("1797693"), std::string::npos) << run.err;

@@ -353,8 +353,10 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand("verify", "Re-solve sampled points and compare with a table");
   auto opt = std::make_shared<CommandOptions>();
   cmd->add_option("TABLE", opt->verify.table, "Table (HDF5) written by wrc generate")->required();
-  cmd->add_option("--samples", opt->verify.samples, "Number of sample points")
-      ->check(GreaterThanZero())
+  // Each sample is a full solve (about 20 ms) and a row of the report held in memory: a million
+  // is hours of solving, already far past what an error distribution needs.
+  cmd->add_option("--samples", opt->verify.samples, "Number of sample points (at most 1000000)")
+      ->check(NumberCheck([](double v) { return v > 0.0 && v <= 1e6; }, "1 to 1000000", "1-1e6"))
       ->capture_default_str();
   cmd->add_option("--seed", opt->verify.seed, "Random seed (fixed: results are repeatable)")
       ->check(CLI::Validator(
