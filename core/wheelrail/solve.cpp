@@ -362,6 +362,21 @@ std::string CheckFlangeBack(const Case& c, const ProfileSpline& wheel) {
   return hint;
 }
 
+// Every key that places the wheel sideways against its rail, with its value: any of them can
+// put the profiles side by side instead of one above the other.
+std::string LateralPlacement(const Case& c) {
+  const auto mm = [](double v) { return FormatNumber(v) + " mm"; };
+  std::string text = "placed by state.y = " + mm(c.state.y);
+  if (c.track.absolute_placement()) {
+    text += ", track.rail_y = " + mm(c.track.rail_y) + ", track.rail_z = " + mm(c.track.rail_z);
+  } else {
+    text += ", track.gauge_width = " + mm(c.track.gauge_width) +
+            ", track.gauge_height = " + mm(c.track.gauge_height);
+  }
+  return text + ", wheelset.flange_back_distance = " + mm(c.wheelset.flange_back_distance) +
+         " and wheelset.flange_back_position = " + mm(c.wheelset.flange_back_position);
+}
+
 // The profiles' orientation doubts, for an error that a misoriented profile can cause.
 std::string OrientationDoubts(const Problem& pb) {
   std::string doubts;
@@ -603,10 +618,10 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   }
   const double first_contact = FirstContact(pb.search);  // wheelset z of first touch
   if (!std::isfinite(first_contact)) {
-    throw InputError(c.source_name + ": state.y = " + FormatNumber(st.y) +
-                     " mm: the wheel profile lies nowhere above the rail profile" +
-                     (flange_back_hint.empty() ? "" : "; " + flange_back_hint) +
-                     OrientationDoubts(pb));
+    throw InputError(
+        c.source_name + ": the wheel profile lies nowhere above the rail profile, as " +
+        LateralPlacement(c) + (flange_back_hint.empty() ? "" : "; " + flange_back_hint) +
+        OrientationDoubts(pb));
   }
 
   WheelRailResult result;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -246,6 +247,22 @@ TEST_F(ErrorMessages, LateralPositionOutOfRange) {
   // The wheel, 500 mm to the side, lies nowhere above the rail: bad input, not "no contact".
   const fs::path case_file = WriteCaseWith("y = 0.0", "y = 500.0");
   ExpectBadInput(Solve(case_file), {"case.toml", "y = 500"});
+}
+
+// A track or wheelset that puts the wheel beside its rail names every key that places the wheel
+// sideways, with the value that did it, not only state.y.
+TEST_F(ErrorMessages, WheelBesideTheRailNamesThePlacingKeys) {
+  struct Placement {
+    const char* lines;  // inserted before [grid]
+    const char* named;  // what the message must say
+  };
+  for (const Placement& p :
+       {Placement{"[track]\ngauge_width = 3000.0", "track.gauge_width = 3000 mm"},
+        Placement{"[wheelset]\nflange_back_distance = 300.0",
+                  "wheelset.flange_back_distance = 300 mm"}}) {
+    const fs::path case_file = WriteCaseWith("[grid]", std::string(p.lines) + "\n[grid]");
+    ExpectBadInput(Solve(case_file), {"nowhere above the rail", p.named, "state.y = 0 mm"});
+  }
 }
 
 // Roll beyond the range of wheelset-on-track contact names the key and value.
