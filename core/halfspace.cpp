@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -24,9 +25,12 @@ void FillNormal(NormalSolution&& ns, HalfspaceResult& r) {
 
 }  // namespace
 
-Grid HalfspaceGrid(const Case& c) {
+namespace {
+
+// The grid around the Hertz estimate of the contact; throws std::invalid_argument when the
+// estimate or the grid it asks for is beyond what can be solved.
+Grid HertzGrid(const Case& c) {
   const GridSettings& gs = c.grid;
-  if (gs.x && gs.y) return Grid::Covering(gs.x->min, gs.x->max, gs.y->min, gs.y->max, gs.dx, gs.dy);
   const CombinedElasticity m = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
   const HertzContact hertz(c.geometry.a1, c.geometry.b1, m.EffectiveModulus());
   const HalfspaceState& st = c.halfspace_state;
@@ -43,6 +47,27 @@ Grid HalfspaceGrid(const Case& c) {
   const Interval x = gs.x.value_or(Interval{-ax, ax});
   const Interval y = gs.y.value_or(Interval{-ay, ay});
   return Grid::Covering(x.min, x.max, y.min, y.max, gs.dx, gs.dy);
+}
+
+}  // namespace
+
+Grid HalfspaceGrid(const Case& c) {
+  const GridSettings& gs = c.grid;
+  if (gs.x && gs.y) return Grid::Covering(gs.x->min, gs.x->max, gs.y->min, gs.y->max, gs.dx, gs.dy);
+  try {
+    return HertzGrid(c);
+  } catch (const std::invalid_argument& e) {
+    // The grid follows from these keys; the user changes one of them, not the library's call.
+    const HalfspaceState& st = c.halfspace_state;
+    throw InputError(c.source_name + ": the grid around the Hertz contact of geometry.a1 = " +
+                     FormatNumber(c.geometry.a1) +
+                     ", geometry.b1 = " + FormatNumber(c.geometry.b1) + " 1/mm and " +
+                     (st.fn ? "state.fn = " + FormatNumber(*st.fn) + " N"
+                            : "state.approach = " + FormatNumber(*st.approach) + " mm") +
+                     " with grid.dx = " + FormatNumber(gs.dx) +
+                     ", grid.dy = " + FormatNumber(gs.dy) + " mm cannot be built (" + e.what() +
+                     "); give grid.x and grid.y, coarser elements or another load");
+  }
 }
 
 namespace {

@@ -229,6 +229,19 @@ TEST_F(WrcCli, NanValueIsBadInput) {
   EXPECT_NE(result["message"].get<std::string>().find("state.fn"), std::string::npos);
 }
 
+// Without grid.x and grid.y the grid follows the Hertz contact of the load: one it cannot build
+// names the keys it came from, not the grid library's call.
+TEST_F(WrcCli, AGridTheLoadCannotHaveNamesItsKeys) {
+  const fs::path path = dir_ / "case.toml";
+  std::ofstream(path) << "[problem]\ntype = \"halfspace\"\n[geometry]\na1 = 0.001087\n"
+                         "b1 = 0.001087\n[grid]\ndx = 0.5\ndy = 0.5\n[state]\nfn = 1e12\n";
+  const RunResult run = Run({"solve", path.string()});
+  EXPECT_EQ(run.exit_code, 2);
+  for (const char* named : {"case.toml", "state.fn = 1e+12 N", "grid.dx = 0.5", "geometry.a1"}) {
+    EXPECT_NE(run.err.find(named), std::string::npos) << named << ": " << run.err;
+  }
+}
+
 TEST_F(WrcCli, TomlSyntaxErrorIsBadInput) {
   const int index = IndexOf("dx = 0.5");
   const RunResult run = Run({"solve", WriteCase(index, "dx = = 0.5").string()});
