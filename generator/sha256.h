@@ -1,5 +1,5 @@
 #pragma once
-// SHA-256 digests of the profiles and scenes a table records (through nettle).
+// SHA-256 digests of the profiles and scenes a table records (runtime/hdf5/seal.h).
 
 #include <filesystem>
 #include <string>

@@ -956,12 +956,6 @@ void CopyContents(const File& source, File* target) {
   }
 }
 
-FileFormat File::Format() const {
-  H5F_info2_t info{};
-  Check(H5Fget_info2(id(), &info), Where(), "cannot read the file's superblock information");
-  return info.super.version >= 2 ? FileFormat::kChecksummed : FileFormat::kEarliest;
-}
-
 }  // namespace wrc::h5
 
 // ---------------------------------------------------------------------------------------------

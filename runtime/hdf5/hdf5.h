@@ -413,10 +413,6 @@ class File : public Group {
   /// Writes buffered data to disk.
   void Flush();
 
-  /// The format the file is in: kChecksummed for superblock version 2 or later (whose metadata
-  /// carries checksums), else kEarliest.
-  FileFormat Format() const;
-
  private:
   File(Handle handle, std::string file, bool sealed)
       : Group(std::move(handle), std::move(file), "/"), sealed_(sealed) {}

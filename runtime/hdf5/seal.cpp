@@ -60,6 +60,20 @@ std::array<char, kUserBlockSize> Record(const std::string& sha256_hex, std::uint
   return block;
 }
 
+// The digest of everything fed to `context`, as lowercase hex.
+std::string HexDigest(sha256_ctx* context) {
+  std::array<std::uint8_t, SHA256_DIGEST_SIZE> digest{};
+  sha256_digest(context, digest.size(), digest.data());
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  hex.reserve(2 * digest.size());
+  for (const std::uint8_t b : digest) {
+    hex += kHex[b >> 4];
+    hex += kHex[b & 0xF];
+  }
+  return hex;
+}
+
 // SHA-256 (lowercase hex) and count of the bytes after the user block.
 std::string DigestAfterUserBlock(const Fd& fd, const std::string& path, std::uint64_t* bytes) {
   sha256_ctx context;
@@ -74,18 +88,17 @@ std::string DigestAfterUserBlock(const Fd& fd, const std::string& path, std::uin
     offset += static_cast<off_t>(got);
     *bytes += got;
   }
-  std::array<std::uint8_t, SHA256_DIGEST_SIZE> digest{};
-  sha256_digest(&context, digest.size(), digest.data());
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string hex;
-  for (const std::uint8_t b : digest) {
-    hex += kHex[b >> 4];
-    hex += kHex[b & 0xF];
-  }
-  return hex;
+  return HexDigest(&context);
 }
 
 }  // namespace
+
+std::string Sha256Hex(std::string_view bytes) {
+  sha256_ctx context;
+  sha256_init(&context);
+  sha256_update(&context, bytes.size(), reinterpret_cast<const std::uint8_t*>(bytes.data()));
+  return HexDigest(&context);
+}
 
 void SealFile(const std::string& path) {
   const Fd fd(path, O_RDWR);

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 #include "runtime/hdf5/hdf5.h"
 
@@ -15,6 +16,10 @@ namespace wrc::h5 {
 /// The user block HDF5 leaves to the application at the start of a sealed file: the smallest
 /// HDF5 allows, and room for the seal's record.
 inline constexpr std::size_t kUserBlockSize = 512;
+
+/// SHA-256 of bytes as 64 lowercase hex digits, through nettle: the one digest wrc computes (the
+/// seal's, and the profile and scene hashes a table records).
+std::string Sha256Hex(std::string_view bytes);
 
 /// Writes the seal of a closed file created with a user block of kUserBlockSize bytes. Throws
 /// Error when the file cannot be read or written.

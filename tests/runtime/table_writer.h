@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <nettle/sha2.h>
 #include <unistd.h>
 
 #include "runtime/hdf5/hdf5.h"
@@ -69,20 +68,9 @@ inline std::vector<TableAxis> WheelsetAxes(int y_nodes) {
           {"spin", Linspace(-0.01, 0.01, 9)}};
 }
 
-// The stored profiles' bytes, and their digests as the generator writes them.
+// The stored profiles' bytes (their digests are written as the generator writes them).
 inline constexpr const char* kRailProfileText = "# rail profile\n0 0\n1 0\n";
 inline constexpr const char* kWheelProfileText = "# wheel profile\n0 0\n1 1\n";
-inline std::string Sha256Hex(const std::string& text) {
-  sha256_ctx context;
-  sha256_init(&context);
-  sha256_update(&context, text.size(), reinterpret_cast<const std::uint8_t*>(text.data()));
-  std::uint8_t digest[SHA256_DIGEST_SIZE];
-  sha256_digest(&context, sizeof digest, digest);
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string hex;
-  for (const std::uint8_t byte : digest) hex += {kHex[byte >> 4], kHex[byte & 15]};
-  return hex;
-}
 
 inline void WriteTableContents(const std::string& path, const TableContent& content);
 
@@ -99,8 +87,8 @@ inline void WriteTableContents(const std::string& path, const TableContent& cont
   file.WriteStringAttribute(schema::kWrcVersion, "0.1.0-test");
   file.WriteStringAttribute(schema::kCreated, "2024-01-01T00:00:00Z");
   file.WriteStringAttribute(schema::kScene, content.scene);
-  file.WriteStringAttribute(schema::kRailProfileSha256, Sha256Hex(kRailProfileText));
-  file.WriteStringAttribute(schema::kWheelProfileSha256, Sha256Hex(kWheelProfileText));
+  file.WriteStringAttribute(schema::kRailProfileSha256, h5::Sha256Hex(kRailProfileText));
+  file.WriteStringAttribute(schema::kWheelProfileSha256, h5::Sha256Hex(kWheelProfileText));
 
   h5::Group axes = file.CreateGroup(schema::kAxes);
   std::vector<std::string> order;
