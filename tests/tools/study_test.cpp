@@ -172,6 +172,19 @@ TEST_F(Study, DynamicsRunsWithTheShippedWheelsetFromAnyDirectory) {
   EXPECT_NE(md.find("wheel load 12500 N"), std::string::npos) << md;  // the shipped wheelset
   EXPECT_EQ(md.find("--model"), std::string::npos) << md;
   EXPECT_FALSE(fs::exists(dir_ / "out" / "speeds.csv"));  // no runs asked for
+  // The path along y at centred running: the pair is symmetric, so each source's Fy and Mz are
+  // odd in y (the table to rounding, the solver to its force tolerance, 1e-6 of the load).
+  const auto path = CsvRows(dir_ / "out" / "centred.csv");
+  ASSERT_EQ(path.size(), 401u);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto& a = path[i];
+    const auto& b = path[path.size() - 1 - i];
+    EXPECT_DOUBLE_EQ(std::stod(a[0]), -std::stod(b[0]));
+    for (const int column : {1, 3}) {  // fy of the table and of the solver, N
+      EXPECT_NEAR(std::stod(a[column]), -std::stod(b[column]), 0.05) << a[0] << ' ' << column;
+    }
+  }
+  EXPECT_NE(md.find("### Along y at centred running"), std::string::npos) << md;
 }
 
 // --vehicle: the contact linearised at the vehicle's wheel load, and the bogie's linear critical
