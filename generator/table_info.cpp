@@ -145,7 +145,25 @@ TableInfo ReadInfo(const std::filesystem::path& path) {
         errors.OpenDataset(schema::kErrorPoint).Read<std::int64_t>();
     const std::vector<std::string> messages =
         errors.OpenDataset(schema::kErrorMessage).ReadStrings();
-    for (std::size_t i = 0; i < points.size() && i < messages.size(); ++i) {
+    const std::string where = path.string() + ":/" + schema::kErrors + "/";
+    if (points.size() != messages.size()) {
+      throw InputError(where + schema::kErrorPoint + " holds " + std::to_string(points.size()) +
+                       " entries but " + schema::kErrorMessage + " " +
+                       std::to_string(messages.size()) + ": the table is damaged");
+    }
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      // An entry names a failed node of the grid: anywhere else it would be shown against
+      // another node (wrapped) or against one that solved.
+      const bool on_grid = points[i] >= 0 && static_cast<std::uint64_t>(points[i]) < info.points;
+      if (!on_grid || status[static_cast<std::size_t>(points[i])] ==
+                          static_cast<std::int8_t>(schema::StoredStatus::kOk)) {
+        throw InputError(
+            where + schema::kErrorPoint + "[" + std::to_string(i) +
+            "] = " + std::to_string(points[i]) +
+            (on_grid ? " is a node that solved (status 0)"
+                     : " lies outside the grid of " + std::to_string(info.points) + " points") +
+            ": the table is damaged");
+      }
       TableInfo::Failure failure;
       failure.index = static_cast<std::uint64_t>(points[i]);
       std::uint64_t rest = failure.index;

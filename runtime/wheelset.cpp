@@ -283,8 +283,10 @@ int CheckState(const wrc_wheelset_state& s) {
       return WRC_ERR_INVALID_ARGUMENT;
     }
   }
-  if (!(s.velocity > 0.0) || std::isinf(s.velocity)) {
-    SetLastError("wrc_wheelset_eval: velocity = %g mm/s, must be positive and finite", s.velocity);
+  // The case file's bounds (a running wheelset: 0 is not allowed here).
+  if (!(s.velocity >= WRC_VELOCITY_MIN && s.velocity <= WRC_VELOCITY_MAX)) {
+    SetLastError("wrc_wheelset_eval: velocity = %g mm/s, must lie within %g to %g mm/s", s.velocity,
+                 WRC_VELOCITY_MIN, WRC_VELOCITY_MAX);
     return WRC_ERR_INVALID_ARGUMENT;
   }
   return 0;

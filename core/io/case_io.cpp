@@ -20,6 +20,7 @@
 #include "wrc/core/errors.h"
 #include "wrc/core/grid.h"
 #include "wrc/core/profile.h"
+#include "wrc/runtime.h"
 
 namespace wrc {
 namespace io {
@@ -219,8 +220,6 @@ void RequireMagnitudeAtMost(const Section& section, std::string_view key, double
 // 100 mm is wider than any contact patch (a wheel–rail patch is at most ~40 mm long).
 constexpr double kMinElementSize = 1e-4;
 constexpr double kMaxElementSize = 100.0;
-// Rolling speed: 1e6 mm/s = 1 km/s, six times the rail speed record.
-constexpr double kMaxVelocity = 1e6;
 // Creepages and spin (relative slip): 1, i.e. 100 % of the rolling speed.
 constexpr double kMaxCreepage = 1.0;
 // Spin creepage of the half-space case, 1/mm: 1, a full turn of slip direction per ~6 mm.
@@ -469,6 +468,13 @@ Friction ReadFriction(const Section& section) {
     section.Fail("mu", "has " + std::to_string(mu.size()) + " values but friction.alpha_deg has " +
                            std::to_string(alpha.size()) + "; they must have the same length");
   }
+  // A contact angle: within ±90° (the angle of the contact normal from the vertical).
+  for (const NumberAt& a : alpha) {
+    if (!(std::fabs(a.value) <= 90.0)) {
+      section.file().Fail(a.node, a.path,
+                          "must lie within ±90 (degrees: the contact angle at which mu applies)");
+    }
+  }
   for (std::size_t i = 1; i < alpha.size(); ++i) {
     if (!(alpha[i].value > alpha[i - 1].value)) {
       section.file().Fail(alpha[i].node, alpha[i].path,
@@ -569,10 +575,30 @@ HalfspaceGeometry ReadGeometry(const Section& section) {
   return geometry;
 }
 
-// The creepages the lateral, roll and yaw rates add (vy/V, vroll·r0/V, vyaw·lever/V) stay
-// within 100 % slip, as spin does; at rest (V = 0) any rate would be infinite slip.
-void RequireVelocityCreepages(const Section& section, const WheelsetState& state,
-                              const Wheelset& wheelset) {
+}  // namespace
+
+// One set of range checks for the wheelset's state, wherever it comes from (a case file, the
+// axes of a scene): each bound is far outside any real wheel-rail contact, so only a mistake (a
+// unit slip, a typo in an exponent) reaches it, and the message names the key.
+void CheckWheelsetState(const WheelsetState& state, const Wheelset& wheelset, bool omega_given,
+                        const StateRangeFailure& fail) {
+  const auto magnitude_at_most = [&fail](std::string_view key, double value, double limit,
+                                         const std::string& why) {
+    if (!(std::fabs(value) <= limit)) {
+      fail(key, "must be within ±" + FormatNumber(limit) + " (" + why + ")");
+    }
+  };
+  if (state.z) {
+    magnitude_at_most("z", *state.z, kMaxVerticalPosition,
+                      "mm, the wheelset's vertical position; contact is within a few mm");
+  }
+  magnitude_at_most("velocity", state.velocity, WRC_VELOCITY_MAX, "mm/s, i.e. 1 km/s");
+  if (state.velocity != 0.0 && !(std::fabs(state.velocity) >= WRC_VELOCITY_MIN)) {
+    fail("velocity", "must be 0 or at least " + FormatNumber(WRC_VELOCITY_MIN) +
+                         " mm/s in magnitude (1 µm/s; slower is standing still)");
+  }
+  // The creepages the lateral, roll and yaw rates add (vy/V, vroll·r0/V, vyaw·lever/V) stay
+  // within 100 % slip, as spin does; at rest (V = 0) any rate would be infinite slip.
   const double speed = std::fabs(state.velocity);
   const std::tuple<std::string_view, double, double, const char*> rates[] = {
       {"vy", state.vy, 1.0, "mm/s; vy / velocity is a lateral creepage"},
@@ -581,10 +607,26 @@ void RequireVelocityCreepages(const Section& section, const WheelsetState& state
       {"vyaw", state.vyaw, kYawRateLever,
        "rad/s; vyaw·1000 mm / velocity is a longitudinal creepage"}};
   for (const auto& [key, rate, lever, why] : rates) {
-    if (rate == 0.0) continue;
-    RequireMagnitudeAtMost(section, key, rate, kMaxCreepage * speed / lever, why);
+    if (rate != 0.0) magnitude_at_most(key, rate, kMaxCreepage * speed / lever, why);
+  }
+  if (omega_given) {
+    const double free_rolling = OmegaFromSpin(0.0, state.velocity, wheelset.nominal_radius);
+    if (state.velocity != 0.0 && !(std::fabs(state.omega / free_rolling - 1.0) <= kMaxCreepage)) {
+      fail("omega", "must lie within 100 % of free rolling, -velocity / nominal_radius = " +
+                        FormatNumber(free_rolling) + " rad/s (omega is in rad/s)");
+    }
+  }
+  if (state.spin) {
+    magnitude_at_most("spin", *state.spin, kMaxCreepage, "a relative creepage; 1 is 100 % slip");
+    // Finite inputs of absurd size (velocity 1e300 on a 1e-300 mm wheel) overflow.
+    if (!std::isfinite(state.omega)) {
+      fail("spin",
+           "gives a non-finite omega = -(state.velocity / wheelset.nominal_radius)·(1 + spin)");
+    }
   }
 }
+
+namespace {
 
 WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset,
                                 const CaseParseOptions& options) {
@@ -592,10 +634,6 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   WheelsetState state;
   state.y = section.Number("y", state.y);
   state.z = section.OptionalNumber("z");
-  if (state.z) {
-    RequireMagnitudeAtMost(section, "z", *state.z, kMaxVerticalPosition,
-                           "mm, the wheelset's vertical position; contact is within a few mm");
-  }
   state.fz = section.OptionalNumber("fz");
   if (state.z && state.fz) section.Fail("fz", "give either state.z or state.fz, not both");
   const bool vertical_on_axis = options.axis_names.count("z") + options.axis_names.count("fz") > 0;
@@ -609,11 +647,9 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
   state.yaw = section.Number("yaw", state.yaw);
   // The speed sets the creepages and omega; no value is a sensible guess for every user.
   state.velocity = section.RequiredNumber("velocity", "the forward velocity of the wheelset, mm/s");
-  RequireMagnitudeAtMost(section, "velocity", state.velocity, kMaxVelocity, "mm/s, i.e. 1 km/s");
   state.vy = section.Number("vy", state.vy);
   state.vroll = section.Number("vroll", state.vroll);
   state.vyaw = section.Number("vyaw", state.vyaw);
-  RequireVelocityCreepages(section, state, wheelset);
 
   const std::optional<double> omega = section.OptionalNumber("omega");
   state.spin = section.OptionalNumber("spin");
@@ -622,25 +658,13 @@ WheelsetState ReadWheelsetState(const Section& section, const Wheelset& wheelset
       options.axis_names.count("spin") + options.axis_names.count("omega") > 0;
   // Without omega or spin (and no axis for them) the wheelset rolls freely: spin = 0.
   if (!omega && !state.spin && !rotation_on_axis) state.spin = 0.0;
-  if (omega) {
-    state.omega = *omega;
-    const double free_rolling = OmegaFromSpin(0.0, state.velocity, wheelset.nominal_radius);
-    if (state.velocity != 0.0 && !(std::fabs(state.omega / free_rolling - 1.0) <= kMaxCreepage)) {
-      section.Fail("omega", "must lie within 100 % of free rolling, -velocity / nominal_radius = " +
-                                FormatNumber(free_rolling) + " rad/s (omega is in rad/s)");
-    }
-  }
-  if (state.spin) {
-    RequireMagnitudeAtMost(section, "spin", *state.spin, kMaxCreepage,
-                           "a relative creepage; 1 is 100 % slip");
+  if (omega) state.omega = *omega;
+  if (state.spin && std::fabs(*state.spin) <= kMaxCreepage) {
     state.omega = OmegaFromSpin(*state.spin, state.velocity, wheelset.nominal_radius);
-    // Finite inputs of absurd size (velocity 1e300 on a 1e-300 mm wheel) overflow.
-    if (!std::isfinite(state.omega)) {
-      section.Fail("spin",
-                   "gives a non-finite omega = -(state.velocity / wheelset.nominal_radius)·(1 + "
-                   "spin)");
-    }
   }
+  CheckWheelsetState(
+      state, wheelset, omega.has_value(),
+      [&section](std::string_view key, const std::string& message) { section.Fail(key, message); });
   return state;
 }
 
@@ -657,6 +681,10 @@ HalfspaceState ReadHalfspaceState(const Section& section) {
                           "state.approach (mm)");
   }
   if (state.fn) RequireForce(section, "fn", *state.fn);
+  if (state.approach) {
+    RequireMagnitudeAtMost(section, "approach", *state.approach, kMaxVerticalPosition,
+                           "mm, the bodies' approach; a contact's is a small fraction of a mm");
+  }
   state.cksi = section.Number("cksi", state.cksi);
   RequireMagnitudeAtMost(section, "cksi", state.cksi, kMaxCreepage,
                          "a relative creepage; 1 is 100 % slip");

@@ -3,6 +3,7 @@
 /// Private: the case part of case and scene parsing, shared by case_io.cpp and scene_io.cpp.
 
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -32,6 +33,16 @@ struct CaseParseOptions {
 /// values. Does not set source_text.
 Case ReadCase(const toml::table& root, const SourceFile& file,
               const std::filesystem::path& base_dir, const CaseParseOptions& options);
+
+/// Receives the [state] key whose value is out of range and what is wrong with it; throws.
+using StateRangeFailure = std::function<void(std::string_view key, const std::string& message)>;
+
+/// The range checks of a wheelset's state, the same wherever the state comes from (a case
+/// file, the axes of a scene): velocity within WRC_VELOCITY_MIN..WRC_VELOCITY_MAX (or 0), the
+/// creepages of spin, omega (when `omega_given`) and of the rates vy, vroll, vyaw within 100 %
+/// slip, z within 1 m. Calls `fail` for the first value out of range.
+void CheckWheelsetState(const WheelsetState& state, const Wheelset& wheelset, bool omega_given,
+                        const StateRangeFailure& fail);
 
 /// The problem type of a parsed document (`problem.type`, default wheel-rail).
 CaseType ReadCaseType(const toml::table& root, const SourceFile& file);

@@ -97,6 +97,13 @@ typedef struct wrc_table wrc_table;
  *  moments in N·mm are below 1e12): cubic lookups divide differences of values by steps down to
  *  WRC_AXIS_MIN_STEP, which stays finite (below 1e61) only for values so bounded. */
 #define WRC_VALUE_MAX_MAGNITUDE 1e30
+/** The wheelset's forward velocity, mm/s, wherever it enters (case files, scenes, the
+ *  wheelset state of wrc_wheelset_eval()): at most WRC_VELOCITY_MAX (1 km/s, six times the
+ *  rail speed record) and at least WRC_VELOCITY_MIN (1 µm/s; a case file may also give 0,
+ *  standing). Creepages are rates divided by it; the solver's arithmetic stays exact down to
+ *  about 1e-100 mm/s and is wrong at 1e-200, so the bound is far inside what is honest. */
+#define WRC_VELOCITY_MIN 1e-3
+#define WRC_VELOCITY_MAX 1e6
 /** @} */
 
 /* ---------------------------------------------------------------------------------------------

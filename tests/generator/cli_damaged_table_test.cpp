@@ -103,6 +103,46 @@ TEST(CliDamagedTable, IntegerOutput) {
   ExpectRefused(table, "must be floating point (float64), is int32");
 }
 
+// /errors names failed nodes by their flat index: one beyond the grid, one on a node that
+// solved, or a point list longer than the message list is damage, not a failure to show.
+TEST(CliDamagedTable, ErrorsThatNameNoFailedNode) {
+  ScratchDir dir("damaged_errors");
+  TableContent content = ValidTable();
+  // The node at y = 0, roll = 0 (flat index 2 · 3 + 1 = 7) failed.
+  content.status = [](const std::vector<double>& x) -> std::int8_t {
+    return x[0] == 0.0 && x[1] == 0.0 ? 3 : 0;
+  };
+  const auto with_errors = [&](const std::string& name, std::vector<std::int64_t> points,
+                               std::vector<std::string> messages) {
+    return WriteEdited(dir, name, content, [&](h5::File& file) {
+      h5::Group errors = file.CreateGroup("errors");
+      errors.WriteDataset<std::int64_t>("point", {points.size()}, points);
+      errors.WriteStringDataset("message", messages);
+    });
+  };
+  const fs::path intact = with_errors("intact.h5", {7}, {"no contact"});
+  const CommandResult shown =
+      RunCommand(Quoted(WrcBinary()) + " info " + Quoted(intact.string()), dir.path());
+  EXPECT_EQ(shown.exit_code, 0) << shown.err;
+  EXPECT_NE(shown.out.find("no contact"), std::string::npos) << shown.out;
+  // info and info --json (verify stops earlier here, at the test table's scene).
+  const auto refused = [&](const fs::path& table, const std::string& problem) {
+    for (const std::string command : {" info ", " info --json "}) {
+      const CommandResult r =
+          RunCommand(Quoted(WrcBinary()) + command + Quoted(table.string()), dir.path());
+      EXPECT_EQ(r.exit_code, 2) << command << r.err;
+      EXPECT_NE((r.err + r.out).find(problem), std::string::npos) << command << r.err << r.out;
+    }
+  };
+  refused(with_errors("beyond.h5", {15}, {"no contact"}),
+          "errors/point[0] = 15 lies outside the grid of 15 points");
+  refused(with_errors("negative.h5", {-1}, {"no contact"}), "errors/point[0] = -1 lies outside");
+  refused(with_errors("solved.h5", {7, 8}, {"no contact", "no contact"}),
+          "errors/point[1] = 8 is a node that solved");
+  refused(with_errors("short.h5", {7}, {"no contact", "again"}),
+          "errors/point holds 1 entries but message 2");
+}
+
 TEST(CliDamagedTable, UnknownFormatVersion) {
   ScratchDir dir("damaged_version");
   const fs::path table = WriteEdited(dir, "v7.h5", ValidTable(), [](h5::File& file) {

@@ -127,6 +127,20 @@ TEST_F(RuntimeWheelset, InfiniteStateValuesAreRefused) {
     EXPECT_EQ(wheelset.try_eval(s, r), WRC_ERR_INVALID_ARGUMENT);
   }
   EXPECT_GE(wheelset.try_eval(ok, r), 0);  // NaN fz and mu: not known
+  // The velocity within the case file's bounds: 1e-200 mm/s made the solver's creepages
+  // underflow, and the runtime's state takes the same bounds.
+  for (const double bad :
+       {0.0, -kV0, 1e-200, 0.999 * WRC_VELOCITY_MIN, 1.001 * WRC_VELOCITY_MAX, double{INFINITY}}) {
+    WheelsetTable::State s = ok;
+    s.velocity = bad;
+    EXPECT_EQ(wheelset.try_eval(s, r), WRC_ERR_INVALID_ARGUMENT) << bad;
+    EXPECT_NE(std::string(wrc_last_error()).find("velocity"), std::string::npos);
+  }
+  for (const double fine : {WRC_VELOCITY_MIN, WRC_VELOCITY_MAX}) {
+    WheelsetTable::State s = ok;
+    s.velocity = fine;
+    EXPECT_GE(wheelset.try_eval(s, r), 0) << fine << ": " << wrc_last_error();
+  }
 }
 
 // Without vy, vroll and vyaw axes the velocities enter as the yaw and spin of equal creepage:

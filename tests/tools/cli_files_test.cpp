@@ -123,6 +123,44 @@ TEST_F(CliFiles, OutOnAFullDiskIsAnErrorAndLeavesNoFile) {
   EXPECT_FALSE(fs::exists(out / "fields.csv.tmp"));
 }
 
+// Pictures go through the same checks: on a disk that fills up while the data is written (32 KB
+// limit) or while gnuplot draws the 64 KB PNG (50 KB limit), the command fails naming the file
+// and leaves no part of it; without gnuplot the data is written and the picture is skipped
+// with a warning.
+TEST_F(CliFiles, PicturesOnAFullDiskAreErrorsAndLeaveNoFile) {
+  const fs::path scene = fs::path(WRC_SOURCE_DIR) / "tables" / "mbench_case.toml";
+  for (const int blocks : {64, 100}) {
+    const fs::path out = dir_ / ("plot" + std::to_string(blocks));
+    const std::string command =
+        "ulimit -f " + std::to_string(blocks) + "; trap '' XFSZ; timeout 60 " +
+        Quoted(kWrc.string()) + " plot profiles " + Quoted(scene.string()) + " --out " +
+        Quoted(out.string()) + " >/dev/null 2>" + Quoted((dir_ / "stderr").string());
+    const int status = std::system(("sh -c " + Quoted(command)).c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2) << blocks;
+    const std::string err = wrc::tool_test::ReadFile(dir_ / "stderr");
+    EXPECT_NE(err.find(blocks == 64 ? "profiles_gap.dat" : "could not draw"), std::string::npos)
+        << err;
+    EXPECT_FALSE(fs::exists(out / "profiles.png")) << blocks;
+    for (const auto& entry : fs::directory_iterator(out)) {
+      EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
+      EXPECT_GT(fs::file_size(entry.path()), 0u) << entry.path();
+    }
+  }
+  const fs::path out = dir_ / "no_gnuplot";
+  const std::string command = "timeout 60 env PATH=/nonexistent " + Quoted(kWrc.string()) +
+                              " plot profiles " + Quoted(scene.string()) + " --out " +
+                              Quoted(out.string()) + " >/dev/null 2>" +
+                              Quoted((dir_ / "stderr").string());
+  const int status = std::system(("sh -c " + Quoted(command)).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_NE(wrc::tool_test::ReadFile(dir_ / "stderr").find("gnuplot is not installed"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "profiles_gap.dat"));
+  EXPECT_FALSE(fs::exists(out / "profiles.png"));
+}
+
 // A command never writes onto one of its inputs, under any spelling of the path: the table
 // onto its scene or profile, verify's CSV or map onto the table.
 TEST_F(CliFiles, OutputsNeverOverwriteTheirInputs) {

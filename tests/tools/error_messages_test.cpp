@@ -75,8 +75,12 @@ class ErrorMessages : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   WrcRun Solve(const fs::path& case_file, bool as_json = false) const {
-    std::string command = ShellWord(kWrcBinary.string()) + " solve " + ShellWord(case_file);
-    if (as_json) command += " --json";
+    return Wrc("solve " + ShellWord(case_file) + (as_json ? " --json" : ""));
+  }
+
+  // `wrc ARGUMENTS` (already quoted for the shell).
+  WrcRun Wrc(const std::string& arguments) const {
+    std::string command = ShellWord(kWrcBinary.string()) + " " + arguments;
     command += " >" + ShellWord(dir_ / "stdout") + " 2>" + ShellWord(dir_ / "stderr");
     const int status = std::system(command.c_str());
     WrcRun run;
@@ -232,6 +236,27 @@ TEST_F(ErrorMessages, NegativeElementSize) {
   const fs::path case_file = WriteCaseWith("dx = 0.5", "dx = -0.5", &line);
   ExpectBadInput(Solve(case_file),
                  {"case.toml:" + std::to_string(line), "grid.dx = -0.5", "must be positive"});
+}
+
+// Values that used to be solved into a wrong answer with status ok: a speed so small that the
+// creepage arithmetic underflows (1e-200 mm/s gave fx 0.5 N where 2 kN is right), friction
+// angles beyond any contact angle, and a scene axis that leaves the case file's range.
+TEST_F(ErrorMessages, ValuesOutsideTheirRangesNameTheirKey) {
+  int line = 0;
+  const fs::path slow = WriteCaseWith("velocity = 2000.0", "velocity = 1e-200", &line);
+  ExpectBadInput(Solve(slow), {"case.toml:" + std::to_string(line), "state.velocity = 1e-200",
+                               "at least 0.001 mm/s"});
+  ExpectBadInput(Solve(WriteCaseWith("ds = 0.5",
+                                     "ds = 0.5\n[friction]\nmu = [0.25, 0.3]\nalpha_deg = "
+                                     "[-1e308, 1e308]")),
+                 {"friction.alpha_deg[0] = -1e+308", "must lie within ±90"});
+  const std::string scene_text = FileText(WriteCaseWith("y = 0.0", "y = 0.0")) +
+                                 "[table]\naxes = [\"spin\"]\nspin = [-2.0, 0.0]\n";
+  const fs::path scene = WriteFile("scene.toml", scene_text);
+  const WrcRun run = Wrc("generate " + ShellWord(scene) + " -o " + ShellWord(dir_ / "t.h5"));
+  ExpectBadInput(
+      run, {"scene.toml", "table.spin", "at the corner spin = -2", "state.spin must be within ±1"});
+  EXPECT_FALSE(fs::exists(dir_ / "t.h5"));
 }
 
 TEST_F(ErrorMessages, NanInState) {

@@ -7,12 +7,12 @@
 
 namespace wrc::cli {
 
-/// Runs gnuplot on `script`; with `dir` given, in that directory (the script then names its data
-/// files relative to it). gnuplot's own messages go to stderr. False when gnuplot is missing or
-/// fails: the caller says what is lost (a picture, never the data).
-bool RunGnuplotScript(const std::filesystem::path& script, const std::filesystem::path& dir = {});
-
-/// Writes `text` to dir/script_name and runs it in `dir` (RunGnuplotScript).
+/// Writes `text` to dir/script_name (atomically) and runs it with gnuplot in `dir` (the script
+/// names its data files relative to it). Each PNG of the script's `set output 'NAME'` lines is
+/// drawn to NAME.tmp, checked to be a whole PNG and renamed into place, so that a picture is
+/// either complete or absent. False when gnuplot is not installed (the caller says what is lost:
+/// a picture, never the data); throws InputError naming the picture when gnuplot fails or a
+/// picture comes out incomplete (a full disk).
 bool RunGnuplot(const std::filesystem::path& dir, const std::string& script_name,
                 const std::string& text);
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/plot.h"
 #include "tools/wrc/solve_output.h"
 #include "wrc/core/case.h"
@@ -84,7 +85,7 @@ int ArrowStride(const PatchFields& f) { return std::max(1, (std::max(f.nx, f.ny)
 // The grid as gnuplot's image and pm3d read it: one line per element, a blank line after each
 // row j; x s pn |p_t| px ps state |w| wx ws.
 void WriteMap(const fs::path& path, const PatchFields& f) {
-  std::ofstream dat(path);
+  OutputText dat(path);
   dat << "# x_mm s_mm pn_N/mm2 pt_N/mm2 px_N/mm2 ps_N/mm2 state "
       << (f.rigid ? "w wx ws (rigid slip)" : "s sx ss (slip)") << '\n';
   dat.precision(10);
@@ -97,6 +98,7 @@ void WriteMap(const fs::path& path, const PatchFields& f) {
     }
     dat << '\n';
   }
+  dat.Commit();
 }
 
 double MaxNorm(const std::vector<double>& a, const std::vector<double>& b) {
@@ -113,7 +115,7 @@ void WriteArrows(const fs::path& path, const PatchFields& f) {
   const double pt_max = MaxNorm(f.px, f.ps), w_max = MaxNorm(f.wx, f.ws);
   const double pt_scale = pt_max > 0.0 ? spacing / pt_max : 0.0;
   const double w_scale = w_max > 0.0 ? spacing / w_max : 0.0;
-  std::ofstream dat(path);
+  OutputText dat(path);
   dat << "# x_mm s_mm dx_traction_mm ds_traction_mm dx_slip_mm ds_slip_mm (arrow tails and "
          "lengths; traction scale "
       << pt_scale << " mm per N/mm2, slip scale " << w_scale << " mm)\n";
@@ -127,6 +129,7 @@ void WriteArrows(const fs::path& path, const PatchFields& f) {
           << w_scale * f.ws[k] << '\n';
     }
   }
+  dat.Commit();
 }
 
 // The patch's totals and creepages for the picture's title, from summary.json.
@@ -202,8 +205,8 @@ void DrawPatch(const fs::path& out, const std::string& stem, const PatchFields& 
   written->push_back(out / (stem + "_map.dat"));
   written->push_back(out / (stem + "_arrows.dat"));
   if (!RunGnuplot(out, stem + ".gp", PatchScript(stem, f, title))) {
-    std::cerr << "wrc plot patch: gnuplot failed on " << (out / (stem + ".gp")).string()
-              << " (is gnuplot installed?); the data is written\n";
+    std::cerr << "wrc plot patch: gnuplot is not installed (Debian: gnuplot-nox): "
+              << "no picture, the data is written\n";
     return;
   }
   written->push_back(out / (stem + ".gp"));

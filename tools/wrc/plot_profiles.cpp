@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/plot.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
@@ -73,9 +74,10 @@ Pose SolvePose(const Case& c) {
 // One surface in the track frame: y z per line.
 void WriteSurface(const fs::path& path, const char* header, const std::vector<double>& y,
                   const std::vector<double>& z, double mirror) {
-  std::ofstream dat(path);
+  OutputText dat(path);
   dat << header;
   for (std::size_t k = 0; k < y.size(); ++k) dat << mirror * y[k] << ' ' << z[k] << '\n';
+  dat.Commit();
 }
 
 // The gap along the rail at the contact locus (the smallest vertical distance between the
@@ -86,7 +88,7 @@ struct GapRange {
 };
 
 GapRange WriteGap(const fs::path& path, const std::vector<GapSample>& gap, double mirror) {
-  std::ofstream dat(path);
+  OutputText dat(path);
   dat << "# gap along the rail at the drawn wheelset height: y_mm (rail point, track frame) "
          "gap_mm (vertical, negative: interpenetration) x_mm (contact locus)\n";
   GapRange range;
@@ -96,6 +98,7 @@ GapRange WriteGap(const fs::path& path, const std::vector<GapSample>& gap, doubl
     range.y_max = std::max(range.y_max, mirror * s.y);
     range.gap_min = std::min(range.gap_min, s.gap);
   }
+  dat.Commit();
   return range;
 }
 
@@ -130,7 +133,7 @@ Eigen::Vector2d PatchPoint(const PatchResult& p, double mirror, int j, double s)
 // at the reference (one segment in the second file), labelled with the contact angle.
 void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& pose,
                   std::string* labels) {
-  std::ofstream ext(extents), nor(normals);
+  OutputText ext(extents), nor(normals);
   ext << "# per patch (blocks): y_mm z_mm of the elements in contact along s, track frame\n";
   nor << "# per patch: y_mm z_mm dy_mm dz_mm (the contact normal into the rail, from "
          "above the reference point) contact_angle_deg\n";
@@ -165,6 +168,8 @@ void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& 
                Short(angle * 180.0 / M_PI, 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
                Short(tail(0), 6) + "," + Short(tail(1), 6) + " offset char 1,0.5 front\n";
   }
+  ext.Commit();
+  nor.Commit();
 }
 
 // The drawing's y range: where wheel and rail overlap laterally, with a margin.
@@ -278,8 +283,8 @@ WrittenFiles PlotProfiles(const fs::path& case_path, const fs::path& out) {
   const std::string script = ProfilesScript(ViewOf(written[0], written[1], written[4]), gap,
                                             ProfilesTitle(c, pose), labels);
   if (!RunGnuplot(out, "profiles.gp", script)) {
-    std::cerr << "wrc plot profiles: gnuplot failed on " << (out / "profiles.gp").string()
-              << " (is gnuplot installed?); the data is written\n";
+    std::cerr << "wrc plot profiles: gnuplot is not installed (Debian: gnuplot-nox): "
+              << "no picture, the data is written\n";
     return written;
   }
   written.push_back(out / "profiles.gp");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/plot.h"
 #include "wrc/core/errors.h"
 #include "wrc/runtime.hpp"
@@ -108,7 +109,7 @@ std::string Slice(const Table& table, const TablePlotRequest& r, const std::stri
                   const fs::path& out, int ax, int output, const std::vector<double>& base) {
   const std::vector<double> nodes = table.axis_values(ax);
   std::vector<double> point = base;
-  std::ofstream curve(out / (stem + ".dat")), at_nodes(out / (stem + "_nodes.dat"));
+  OutputText curve(out / (stem + ".dat")), at_nodes(out / (stem + "_nodes.dat"));
   const std::string header = "# " + table.axis_name(ax) + " " + r.output + " flags (at " +
                              FixedText(table, base, {ax}) + ")\n";
   curve << header;
@@ -125,6 +126,8 @@ std::string Slice(const Table& table, const TablePlotRequest& r, const std::stri
     const auto [value, flags] = Value(table, point, output);
     at_nodes << x << ' ' << value << ' ' << flags << '\n';
   }
+  curve.Commit();
+  at_nodes.Commit();
   std::ostringstream gp;
   gp << "set xlabel '" << Label(table, ax) << "'\nset ylabel '" << r.output << ", "
      << table.output_unit(output) << "'\nset key top left box opaque\nset xrange [" << nodes.front()
@@ -142,7 +145,7 @@ std::string Map(const Table& table, const TablePlotRequest& r, const std::string
                 const fs::path& out, int ax, int ay, int output, const std::vector<double>& base) {
   const std::vector<double> xn = table.axis_values(ax), yn = table.axis_values(ay);
   std::vector<double> point = base;
-  std::ofstream map(out / (stem + ".dat")), at_nodes(out / (stem + "_nodes.dat"));
+  OutputText map(out / (stem + ".dat")), at_nodes(out / (stem + "_nodes.dat"));
   const std::string header = "# " + table.axis_name(ax) + " " + table.axis_name(ay) + " " +
                              r.output + " flags (at " + FixedText(table, base, {ax, ay}) + ")\n";
   map << header;
@@ -166,6 +169,8 @@ std::string Map(const Table& table, const TablePlotRequest& r, const std::string
       at_nodes << x << ' ' << y << ' ' << value << ' ' << flags << '\n';
     }
   }
+  map.Commit();
+  at_nodes.Commit();
   std::ostringstream gp;
   gp << "set xlabel '" << Label(table, ax) << "'\nset ylabel '" << Label(table, ay)
      << "'\nset cblabel '" << r.output << ", " << table.output_unit(output)
@@ -208,8 +213,8 @@ WrittenFiles PlotTable(const TablePlotRequest& r, const fs::path& out) {
                  : Slice(table, r, stem, out, ax, output, base));
   WrittenFiles written{out / (stem + ".dat"), out / (stem + "_nodes.dat")};
   if (!RunGnuplot(out, stem + ".gp", gp.str())) {
-    std::cerr << "wrc plot table: gnuplot failed on " << (out / (stem + ".gp")).string()
-              << " (is gnuplot installed?); the data is written\n";
+    std::cerr << "wrc plot table: gnuplot is not installed (Debian: gnuplot-nox): "
+              << "no picture, the data is written\n";
     return written;
   }
   written.push_back(out / (stem + ".gp"));

@@ -13,6 +13,7 @@
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/shipped_files.h"
 #include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
 #include "wrc/generator/worker_threads.h"
 
 namespace wrc::cli {
@@ -83,7 +84,8 @@ void RunParallel(std::size_t n, int threads, const std::function<void(std::size_
 void RunGnuplot(const fs::path& dir, const std::string& name, const std::string& script,
                 const std::string& who) {
   if (!RunGnuplot(dir, name + ".gp", script)) {
-    std::cerr << who << ": gnuplot failed for " << name << " (is gnuplot-nox installed?)\n";
+    std::cerr << who << ": gnuplot is not installed (Debian: gnuplot-nox): no picture from " << name
+              << ".gp\n";
   }
 }
 
@@ -158,9 +160,7 @@ std::vector<fs::path> WriteShippedFiles(const fs::path& dir,
     if (it == files.end()) throw std::logic_error("no shipped file " + name);
     const fs::path path = dir / name;
     fs::create_directories(path.parent_path());
-    std::ofstream out(path, std::ios::binary);
-    out.write(it->bytes.data(), static_cast<std::streamsize>(it->bytes.size()));
-    if (!out) throw InputError("cannot write " + path.string());
+    WriteFileAtomically(path, std::string_view(it->bytes.data(), it->bytes.size()));
     written.push_back(path);
   }
   return written;

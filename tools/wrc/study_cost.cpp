@@ -15,6 +15,7 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/thread_option.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/case.h"
@@ -78,8 +79,8 @@ SolverRow SolveTimed(const Case& c) {
 void DrawStudy(const fs::path& dir, const std::string& script_name, const std::string& script,
                const std::string& study) {
   if (!RunGnuplot(dir, script_name, script)) {
-    std::cerr << "wrc study " << study << ": gnuplot failed (is gnuplot installed?); the data is "
-              << "in " << dir.string() << '\n';
+    std::cerr << "wrc study " << study << ": gnuplot is not installed (Debian: gnuplot-nox); the "
+              << "data is in " << dir.string() << '\n';
   }
 }
 
@@ -100,7 +101,7 @@ double FyError(const std::vector<SolverRow>& rows, const SolverRow& r, double fi
 void WriteSolverLines(const fs::path& path, const std::vector<SolverRow>& rows,
                       const std::vector<std::string>& names, double finest,
                       const std::vector<double>& own_size) {
-  std::ofstream dat(path);
+  OutputText dat(path);
   dat.precision(8);
   for (std::size_t k = 0; k < names.size(); ++k) {
     dat << (k ? "\n\n" : "") << "# " << names[k] << "\n# element_mm seconds err_fy_rel_load own\n";
@@ -110,6 +111,7 @@ void WriteSolverLines(const fs::path& path, const std::vector<SolverRow>& rows,
           << (r.size == own_size[k] ? 1 : 0) << '\n';
     }
   }
+  dat.Commit();
 }
 
 // The plot's ranges, set from the drawn points (time, error of fy): gnuplot's own would be
@@ -167,10 +169,10 @@ void DrawSolverPicture(const fs::path& out, const std::vector<SolverRow>& rows,
 
 void WriteSolverReport(const fs::path& out, const std::vector<SolverRow>& rows,
                        const std::vector<double>& sizes, const std::vector<double>& own_size) {
-  std::ofstream csv(out / "solver.csv");
+  OutputText csv(out / "solver.csv");
   csv << "case,element_mm,seconds,status,fx,fy,fz,z,err_fx_rel_load,err_fy_rel_load,err_z_um\n";
   csv.precision(8);
-  std::ofstream md(out / "solver.md");
+  OutputText md(out / "solver.md");
   md << "# Solver accuracy against cost\n\nEvery case solved with square elements of each size "
         "(best time of two solves); errors against the finest size, forces as a fraction of "
         "that solve's vertical (normal) force, z (the approach for half-space cases) in µm.\n\n"
@@ -196,8 +198,9 @@ void WriteSolverReport(const fs::path& out, const std::vector<SolverRow>& rows,
   }
   md << "\nData: `solver.csv`; picture: `solver.png` (error of fy against time per solve, one "
         "line per case; `solver_lines.dat` holds what it draws).\n";
-  csv.close();
+  csv.Commit();
   DrawSolverPicture(out, rows, sizes, own_size);
+  md.Commit();
 }
 
 // Solver accuracy against cost: each case at each element size, errors against the finest.
@@ -301,12 +304,12 @@ std::string AxesText(const std::vector<SceneAxis>& axes) {
 
 void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
                        const std::vector<TableRow>& rows, int samples, std::uint64_t seed) {
-  std::ofstream csv(out / "tables.csv");
+  OutputText csv(out / "tables.csv");
   csv << "kind,target,points,generate_s,file_bytes,force_p95_linear,force_rms_linear,"
          "force_max_linear,z_p95_linear_mm,lookup_ns_linear,force_p95_cubic,force_rms_cubic,"
          "force_max_cubic,z_p95_cubic_mm,lookup_ns_cubic,axes\n";
   csv.precision(6);
-  std::ofstream md(out / "tables.md");
+  OutputText md(out / "tables.md");
   md << "# Table accuracy against size and time\n\nTables of `" << scene_path.filename().string()
      << "`, " << samples << " uniform random samples (seed " << seed
      << ") re-solved exactly. Force errors: the largest over the force outputs, as a fraction "
@@ -332,16 +335,17 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
                   1e3 * r.z_p95[0], r.lookup_ns[0], r.lookup_ns[1]);
     md << line;
   }
-  csv.close();
+  csv.Commit();
   // One data file per kind (points, p95 multilinear, p95 cubic in %), so that lines connect.
   for (const char* kind : {"refined", "uniform"}) {
-    std::ofstream dat(out / (std::string("tables_") + kind + ".dat"));
+    OutputText dat(out / (std::string("tables_") + kind + ".dat"));
     dat << "# points p95_linear_percent p95_cubic_percent\n";
     for (const TableRow& r : rows) {
       if (r.kind == kind) {
         dat << r.points << ' ' << 100 * r.force_p95[0] << ' ' << 100 * r.force_p95[1] << '\n';
       }
     }
+    dat.Commit();
   }
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size 1000,650 font ',10'\nset output 'tables.png'\n"
@@ -356,6 +360,7 @@ void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
         "title 'refined, multilinear', '' using 1:3 with linespoints pt 6 lc rgb '#67a9cf' title "
         "'refined, cubic', 1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
   DrawStudy(out, "tables.gp", gp.str(), "tables");
+  md.Commit();
 }
 
 // One table of the study: generated, timed and verified; *axes receives its nodes.

@@ -27,6 +27,7 @@
 #include "tools/dynamics/model.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/shipped_files.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
@@ -334,15 +335,15 @@ void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
                           dynamics::MeasureHunting(table, kSettle),
                           dynamics::MeasureHunting(solver, kSettle)});
   const std::string stem = "run_" + Fixed(speed_m_s, 1) + "ms";
-  std::ofstream csv(out_ / (stem + ".csv"));
+  OutputText csv(out_ / (stem + ".csv"));
   csv << "t_s,y_table_mm,yaw_table_rad,y_solver_mm,yaw_solver_rad\n";
   csv.precision(9);
   for (std::size_t i = 0; i < table.t.size() && i < solver.t.size(); ++i) {
     csv << table.t[i] << ',' << table.y[i] << ',' << table.yaw[i] << ',' << solver.y[i] << ','
         << solver.yaw[i] << '\n';
   }
-  csv.close();
-  std::ofstream gp(out_ / (stem + ".gp"));
+  csv.Commit();
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,700 font ',10'\nset output '" << stem << ".png'\n"
      << "set datafile separator ','\nset multiplot layout 2,1 title '"
      << (vehicle_ ? "Leading wheelset of the bogie" : "Wheelset") << " at " << Fixed(speed_m_s, 1)
@@ -356,10 +357,8 @@ void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
      << ".csv' skip 1 using 1:($3*1000) with lines lw 2 title 'table', '' skip 1 using 1:($5*1000) "
         "with lines dt 2 lw 2 title 'solver'\n"
      << "unset multiplot\n";
-  gp.close();
-  if (!RunGnuplotScript(stem + ".gp", out_)) {
-    std::cerr << "wrc study dynamics: gnuplot failed for " << stem << ".gp\n";
-  }
+  if (!RunGnuplot(out_, stem + ".gp", gp.str()))
+    std::cerr << "wrc study dynamics: gnuplot is not installed: no " << stem << ".png\n";
 }
 
 void TableStudy::RunSolver() {
@@ -427,7 +426,7 @@ void TableStudy::Linearise() {
   const dynamics::RollCurve* rolls[2] = {&table_forces_->roll_curve(), &solver.roll_curve()};
   WriteRollCsv(*rolls[0], *rolls[1]);
   SampleCentredPath(sources);
-  std::ofstream csv(out_ / "linear.csv");
+  OutputText csv(out_ / "linear.csv");
   csv << "source,y_mm,speed_m_s,dfy_dy,dfy_dyaw,dfy_dvy,dfy_dvyaw,dmz_dy,dmz_dyaw,dmz_dvy,"
          "dmz_dvyaw\n";
   csv.precision(8);
@@ -449,17 +448,19 @@ void TableStudy::Linearise() {
       linear_.push_back(l);
     }
   }
+  csv.Commit();
 }
 
 // Both sources' quasi-static roll against y (on the same y grid, kRollCurveStep): the roll
 // enters every derivative in y through the contact angles, so a gap there shows in ∂Fy/∂y.
 void TableStudy::WriteRollCsv(const dynamics::RollCurve& table,
                               const dynamics::RollCurve& solver) const {
-  std::ofstream csv(out_ / "roll.csv");
+  OutputText csv(out_ / "roll.csv");
   csv << "y_mm,roll_table_rad,roll_solver_rad\n";
   csv.precision(10);
   for (std::size_t i = 0; i < table.y().size(); ++i)
     csv << table.y()[i] << ',' << table.roll()[i] << ',' << solver(table.y()[i]) << '\n';
+  csv.Commit();
 }
 
 // The wheelset's Fy and Mz of both sources every kPathStep of y over ±kPathHalfWidth: what the
@@ -470,7 +471,7 @@ constexpr double kPathStep = 0.01, kPathHalfWidth = 2.0;  // mm
 void TableStudy::SampleCentredPath(const dynamics::ForceSource (&sources)[2]) {
   const double v = 1000.0 * options_.linear_speed;
   const int n = static_cast<int>(std::lround(kPathHalfWidth / kPathStep));
-  std::ofstream csv(out_ / "centred.csv");
+  OutputText csv(out_ / "centred.csv");
   csv << "y_mm,fy_table_n,mz_table_nmm,fy_solver_n,mz_solver_nmm\n";
   csv.precision(10);
   for (int i = -n; i <= n; ++i) {
@@ -486,6 +487,7 @@ void TableStudy::SampleCentredPath(const dynamics::ForceSource (&sources)[2]) {
     }
     csv << '\n';
   }
+  csv.Commit();
 }
 
 namespace {
@@ -532,7 +534,7 @@ void TableStudy::WriteCentredSummary(std::ostream& md) const {
 
 void TableStudy::WriteCentredPlot() const {
   if (centred_.y.empty()) return;
-  std::ofstream gp(out_ / "centred.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,800 font ',10'\nset output 'centred.png'\n"
      << "set datafile separator ','\nset grid\nset key top right\nset xlabel 'y, mm'\n"
      << "set multiplot layout 2,1 title 'The wheelset at centred running, " << options_.linear_speed
@@ -541,9 +543,8 @@ void TableStudy::WriteCentredPlot() const {
         "'' skip 1 using 1:4 with lines title 'solver'\n"
      << "set ylabel 'M_z, N mm'\nplot 'centred.csv' skip 1 using 1:3 with lines lw 2 title "
         "'table', '' skip 1 using 1:5 with lines title 'solver'\nunset multiplot\n";
-  gp.close();
-  if (!RunGnuplotScript("centred.gp", out_))
-    std::cerr << "wrc study dynamics: gnuplot failed for centred.gp\n";
+  if (!RunGnuplot(out_, "centred.gp", gp.str()))
+    std::cerr << "wrc study dynamics: gnuplot is not installed: no centred.png\n";
 }
 
 void TableStudy::WriteLinearSummary(std::ostream& md) const {
@@ -589,7 +590,7 @@ void TableStudy::AnalyseVehicle() {
     vehicle_stability_.push_back(s);
   }
   const double reference = vehicle_stability_.back().critical;  // the solver's
-  std::ofstream csv(out_ / "vehicle.csv");
+  OutputText csv(out_ / "vehicle.csv");
   csv << "source,critical_speed_m_s,speed_m_s,frequency_hz,real_part_1_s\n";
   csv.precision(8);
   for (VehicleStability& s : vehicle_stability_) {
@@ -604,6 +605,7 @@ void TableStudy::AnalyseVehicle() {
           << s.damping.back() << '\n';
     }
   }
+  csv.Commit();
 }
 
 void TableStudy::WriteVehicleSummary(std::ostream& md) const {
@@ -692,7 +694,7 @@ void TableStudy::CurveVehicle() {
 }
 
 void TableStudy::WriteCurvingCsv() const {
-  std::ofstream csv(out_ / "curving.csv");
+  OutputText csv(out_ / "curving.csv");
   csv << "radius_m,speed_m_s,source,converged,residual_n,evaluations,seconds,y1_mm,yaw1_rad,y2_mm,"
          "yaw2_rad,frame_y_mm,frame_yaw_rad,wheel,lateral_y_n,vertical_q_n,y_over_q,t_gamma_n\n";
   csv.precision(9);
@@ -709,11 +711,12 @@ void TableStudy::WriteCurvingCsv() const {
       }
     }
   }
+  csv.Commit();
 }
 
 void TableStudy::WriteCurvingPlot() const {
   const std::vector<double>& radii = vehicle_->curving.radii;
-  std::ofstream gp(out_ / "curving.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,800 font ',10'\nset output 'curving.png'\n"
      << "set datafile separator ','\nset grid\nset key outside right\nset logscale x\n"
      << "set xrange [" << 0.5e-3 * *std::min_element(radii.begin(), radii.end()) << ":"
@@ -739,10 +742,8 @@ void TableStudy::WriteCurvingPlot() const {
   // Tγ where the table has it (a table made without the t_gamma output gives NaN).
   if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma)) panel("T{/Symbol g}, N", 18);
   gp << "unset multiplot\n";
-  gp.close();
-  if (!RunGnuplotScript("curving.gp", out_)) {
-    std::cerr << "wrc study dynamics: gnuplot failed for curving.gp\n";
-  }
+  if (!RunGnuplot(out_, "curving.gp", gp.str()))
+    std::cerr << "wrc study dynamics: gnuplot is not installed: no curving.png\n";
 }
 
 void TableStudy::WriteCurvingSummary(std::ostream& md) const {
@@ -792,7 +793,7 @@ void TableStudy::WriteCurvingSummary(std::ostream& md) const {
 }
 
 void TableStudy::WriteSpeedsCsv() const {
-  std::ofstream csv(out_ / "speeds.csv");
+  OutputText csv(out_ / "speeds.csv");
   csv << "source,speed_m_s,frequency_hz,growth_rate_1_s,max_abs_y_mm,flags,seconds,steps\n";
   csv.precision(8);
   for (const std::string source : {"table", "solver"}) {
@@ -807,10 +808,11 @@ void TableStudy::WriteSpeedsCsv() const {
           << r.seconds << ',' << r.steps << '\n';
     }
   }
+  csv.Commit();
 }
 
 void TableStudy::WriteHuntingPlot() const {
-  std::ofstream gp(out_ / "hunting.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,700 font ',10'\nset output 'hunting.png'\n"
      << "set datafile separator ','\nset grid\nset key left top\n"
      << "set multiplot layout 2,1 title 'Hunting against speed (" << table_name_
@@ -825,14 +827,12 @@ void TableStudy::WriteHuntingPlot() const {
         "'table', "
         "'' using (strcol(1) eq 'solver' ? $2 : 1/0):3 with points pt 5 ps 1.5 title 'solver'\n"
      << "unset multiplot\n";
-  gp.close();
-  if (!RunGnuplotScript("hunting.gp", out_)) {
-    std::cerr << "wrc study dynamics: gnuplot failed for hunting.gp\n";
-  }
+  if (!RunGnuplot(out_, "hunting.gp", gp.str()))
+    std::cerr << "wrc study dynamics: gnuplot is not installed: no hunting.png\n";
 }
 
 void TableStudy::WriteSummary() const {
-  std::ofstream md(out_ / "README.md");
+  OutputText md(out_ / "README.md");
   const Parameters& p = parameters_;
   if (vehicle_) {
     const dynamics::BogieParameters& b = *vehicle_;
@@ -846,6 +846,7 @@ void TableStudy::WriteSummary() const {
     WriteVehicleSummary(md);
     WriteCurvingSummary(md);
     if (!options_.linear_only) WriteRunsSummary(md);
+    md.Commit();
     return;
   }
   md << "# Wheelset dynamics on " << table_name_ << "\n\n"
@@ -859,6 +860,7 @@ void TableStudy::WriteSummary() const {
   WriteLinearSummary(md);
   WriteCentredSummary(md);
   if (!options_.linear_only) WriteRunsSummary(md);
+  md.Commit();
 }
 
 // The runs of both sources: critical speeds by time integration, trajectories, cost.

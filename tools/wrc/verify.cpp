@@ -19,6 +19,7 @@
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
 #include "wrc/core/profile.h"
 #include "wrc/core/wheelrail.h"
 #include "wrc/generator/generator.h"
@@ -43,10 +44,8 @@ void RestoreProfile(const h5::File& file, const std::string& name, const fs::pat
       std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
       file.HasAttribute(digest) ? file.ReadStringAttribute(digest) : std::string());
   fs::create_directories(target.parent_path());
-  std::ofstream out(target, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw InputError("cannot write the table's profile to " + target.string());
+  WriteFileAtomically(target,
+                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 // Spread (max − min) of the finite values, or `if_flat` when there is none.

@@ -18,6 +18,7 @@
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
 #include "tools/wrc/thread_option.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
@@ -147,7 +148,7 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
   const fs::path png = opt.png;
   const fs::path data = fs::path(png).replace_extension(".dat");
   {
-    std::ofstream out(data);
+    OutputText out(data);
     out.precision(10);
     std::vector<double> values(v.output_names.size());
     for (std::size_t k = 0; k < points.size(); ++k) {
@@ -166,15 +167,17 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
       }
       out << points[k][ax] << ' ' << points[k][ay] << ' ' << (std::isfinite(e) ? e : NAN) << '\n';
     }
+    out.Commit();
   }
   const fs::path nodes = fs::path(png).replace_extension(".nodes");
   {
-    std::ofstream out(nodes);
+    OutputText out(nodes);
     out.precision(12);
     for (const double x : xs)
       out << x << ' ' << ys.front() << ' ' << 0 << ' ' << ys.back() - ys.front() << '\n';
     for (const double y : ys)
       out << xs.front() << ' ' << y << ' ' << xs.back() - xs.front() << ' ' << 0 << '\n';
+    out.Commit();
   }
   std::ostringstream through_text;
   for (std::size_t a = 0; a < v.axis_names.size(); ++a) {
@@ -184,9 +187,10 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
   }
   const fs::path script = fs::path(png).replace_extension(".gp");
   {
-    std::ofstream gp(script);
+    // Absolute names: gnuplot runs in the script's folder.
+    std::ostringstream gp;
     gp << "set terminal pngcairo noenhanced size 1000,760 font ',10'\n"
-       << "set output '" << png.string() << "'\n"
+       << "set output '" << fs::absolute(png).string() << "'\n"
        << "set title \"" << fs::path(opt.verify.table).filename().string() << ": error of "
        << output << " (table − solver" << (force ? ", % of the local wheel load" : "") << ")\\n"
        << (through_text.str().empty() ? "" : "through " + through_text.str() + "; ")
@@ -195,16 +199,18 @@ void WriteErrorMap(const Verification& v, const CommandOptions& opt) {
        << "set ylabel '" << v.axis_names[ay] << " (" << table.axis_unit(ay) << ")'\n"
        << "set cblabel '" << output << " error" << (force ? " (% of load)" : "") << "'\n"
        << "set palette defined (-1 '#2166ac', 0 '#f7f7f7', 1 '#b2182b')\n"
-       << "stats '" << data.string() << "' using 3 nooutput\n"
+       << "stats '" << fs::absolute(data).string() << "' using 3 nooutput\n"
        << "m = (abs(STATS_min) > abs(STATS_max) ? abs(STATS_min) : abs(STATS_max))\n"
        << "if (m <= 0) m = 1\n"
        << "set cbrange [-m:m]\nset xrange [" << xs.front() << ":" << xs.back() << "]\n"
        << "set yrange [" << ys.front() << ":" << ys.back() << "]\n"
-       << "plot '" << data.string() << "' using 1:2:3 with image notitle, '" << nodes.string()
+       << "plot '" << fs::absolute(data).string() << "' using 1:2:3 with image notitle, '"
+       << fs::absolute(nodes).string()
        << "' using 1:2:3:4 with vectors nohead lc rgb '#60000000' lw 0.5 notitle\n";
-  }
-  if (!RunGnuplotScript(script)) {
-    throw InputError("gnuplot failed to draw " + png.string() + " (is gnuplot installed?)");
+    if (!RunGnuplot(script.parent_path(), script.filename().string(), gp.str())) {
+      throw InputError("gnuplot is not installed (Debian: gnuplot-nox): cannot draw " +
+                       png.string());
+    }
   }
   std::cerr << "wrc verify: wrote " << png.string() << " (" << output << " over "
             << v.axis_names[ax] << " and " << v.axis_names[ay] << ", " << n * n
