@@ -94,6 +94,43 @@ TEST(Curving, TheWholeBogieBalancesItsUnbalancedForceAndYawMoment) {
   }
 }
 
+// A low-conicity pair whose wheelsets run to the flange in every curve: beyond 6 mm the flange
+// adds a lateral force that rises to 10 kN within 0.05 mm and then stiffens (two-point contact, as
+// on a worn rail). The equilibrium lies on that steep rise; it must be found and balance the
+// bogie.
+struct FlangeContact {
+  LinearContact creep;
+  ContactLoads operator()(const State& s, double velocity) const {
+    ContactLoads l = creep(s, velocity);
+    // 10 kN over the first 0.05 mm beyond the flange root (2·10⁵ N/mm), then 2·10⁴ N/mm.
+    constexpr double kRoot = 6.0, kRise = 0.05, kJump = 10000.0, kStiffness = 20000.0;
+    const double beyond = std::fabs(s.y) - kRoot;
+    if (beyond > 0.0) {
+      const double flange =
+          beyond < kRise ? kJump * beyond / kRise : kJump + kStiffness * (beyond - kRise);
+      l.fy -= std::copysign(flange, s.y);
+    }
+    return l;
+  }
+};
+
+TEST(Curving, AnEquilibriumAtTheFlangeIsFound) {
+  const BogieParameters p = Vehicle();
+  LinearContact creep = VehicleCreep();
+  creep.conicity = 0.005;  // the rolling-radius difference cannot steer it round the curve
+  const FlangeContact flange{creep};
+  const ForceSource forces[2] = {flange, flange};
+  for (const double radius : p.curving.radii) {
+    const CurveCase curve = CurveCase::WithDeficiency(radius, p.curving);
+    const CurvingResult r = SolveCurving(p, curve, forces);
+    ASSERT_TRUE(r.converged) << radius << ": " << r.residual;
+    const double mass = 2.0 * p.wheelset_mass + p.frame_mass + 0.5 * p.body_mass;
+    const double unbalanced = mass * curve.UnbalancedAcceleration() / 1000.0;  // N
+    EXPECT_NEAR(r.loads[0].fy + r.loads[1].fy + unbalanced, 0.0, 6.0 * kCurvingResidual);
+    EXPECT_GT(r.position(0), 6.0) << radius;  // the leading wheelset at its flange
+  }
+}
+
 TEST(Curving, CurvingSectionErrorsNameTheKey) {
   const auto message = [](const std::string& curving) {
     std::string text =

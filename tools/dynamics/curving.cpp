@@ -130,17 +130,68 @@ double CurveCase::UnbalancedAcceleration() const {
   return speed * speed / radius - kGravity * cant / rail_spacing;
 }
 
-CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
-                           const ForceSource (&forces)[2]) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// Powell's hybrid method on one curve from `u`; the solution replaces `u`. True when the
+// residual is below kCurvingResidual. `evaluations` counts the bogie's contact evaluations.
+bool SolveFrom(const BogieParameters& p, const CurveCase& curve, const ForceSource (&forces)[2],
+               Vector& u, int* evaluations) {
   Equations equations(p, curve, forces);
   Eigen::HybridNonLinearSolver<Equations> solver(equations);
   solver.parameters.xtol = 1e-12;  // relative step: far below the residual tolerance's reach
   solver.parameters.maxfev = 200;
-  Vector u = Vector::Zero(6);
   solver.solve(u);
+  ContactLoads loads[2];
+  equations.Contact(u, loads);
+  *evaluations += equations.evaluations();
+  return equations.Residual(u, loads).cwiseAbs().maxCoeff() < kCurvingResidual;
+}
 
+// The curve scaled by `lambda` in curvature and cant at the same speed: its unbalanced
+// acceleration and every curvature term scale with lambda, and lambda = 0 is straight track,
+// where centred running is the equilibrium.
+CurveCase Scaled(const CurveCase& curve, double lambda) {
+  CurveCase c = curve;
+  c.radius = curve.radius / lambda;
+  c.cant = curve.cant * lambda;
+  return c;
+}
+
+// Continuation from straight track: where the direct solve from centred running stops short (an
+// equilibrium at the flange, behind a jump of the contact from the tread), the curve is reached
+// in steps of curvature, each solved from the last; a step that fails is halved, down to 1/64.
+bool SolveByContinuation(const BogieParameters& p, const CurveCase& curve,
+                         const ForceSource (&forces)[2], Vector& u, int* evaluations) {
+  constexpr double kSmallestStep = 1.0 / 64.0;
+  Vector reached = Vector::Zero(6);
+  double lambda = 0.0, step = 0.25;
+  while (lambda < 1.0) {
+    const double next = std::min(1.0, lambda + step);
+    Vector trial = reached;
+    if (SolveFrom(p, Scaled(curve, next), forces, trial, evaluations)) {
+      reached = trial;
+      lambda = next;
+      step = std::min(0.25, 2.0 * step);
+    } else if ((step *= 0.5) < kSmallestStep) {
+      return false;
+    }
+  }
+  u = reached;
+  return true;
+}
+
+}  // namespace
+
+CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
+                           const ForceSource (&forces)[2]) {
+  const auto start = std::chrono::steady_clock::now();
   CurvingResult result;
+  Vector u = Vector::Zero(6);
+  if (!SolveFrom(p, curve, forces, u, &result.evaluations)) {
+    Vector continued;
+    if (SolveByContinuation(p, curve, forces, continued, &result.evaluations)) u = continued;
+  }
+  Equations equations(p, curve, forces);
   ContactLoads loads[2];
   equations.Contact(u, loads);
   const Vector residual = equations.Residual(u, loads);
@@ -150,7 +201,7 @@ CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
   result.body_y = equations.Track(u).body_y;
   result.residual = residual.cwiseAbs().maxCoeff();
   result.converged = result.residual < kCurvingResidual;
-  result.evaluations = equations.evaluations();
+  result.evaluations += equations.evaluations();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

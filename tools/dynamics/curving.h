@@ -51,7 +51,9 @@ constexpr double kCurvingResidual = 1.0;
 /// Solves for the equilibrium by Powell's hybrid method (Eigen's HybridNonLinearSolver, a
 /// trust region that stays stable where flange contact makes the forces steep) from centred
 /// running, with the contact's Jacobian by central differences of `forces[k]` per wheelset and
-/// the suspension's exactly. Not converged is a status, not an error.
+/// the suspension's exactly; where that stops short of the residual, by continuation from
+/// straight track in steps of curvature (the equilibrium at the flange of a low-conicity pair
+/// lies behind a jump of the contact from the tread). Not converged is a status, not an error.
 CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
                            const ForceSource (&forces)[2]);
 
