@@ -568,6 +568,11 @@ void ApplyAxisValues(Case& point, const std::vector<SceneAxis>& axes,
 // (CheckWheelsetState): the bounds are on magnitudes and on ratios of quantities that are
 // linear along each axis, so the corners bound the whole box.
 void CheckStateAtCorners(const Section& table, const Scene& scene) {
+  const auto has_axis = [&scene](std::string_view name) {
+    return std::any_of(scene.axes.begin(), scene.axes.end(),
+                       [name](const SceneAxis& a) { return a.name == name; });
+  };
+  const bool omega_axis = has_axis("omega");
   const std::size_t n = scene.axes.size();
   for (std::size_t corner = 0; corner < (std::size_t{1} << n); ++corner) {
     std::vector<double> values;
@@ -579,14 +584,9 @@ void CheckStateAtCorners(const Section& table, const Scene& scene) {
     }
     Case point = scene.base;
     ApplyAxisValues(point, scene.axes, values);
-    const bool omega_axis = std::any_of(scene.axes.begin(), scene.axes.end(),
-                                        [](const SceneAxis& a) { return a.name == "omega"; });
     CheckWheelsetState(point.state, point.wheelset, omega_axis,
                        [&](std::string_view key, const std::string& message) {
-                         const bool on_axis =
-                             std::any_of(scene.axes.begin(), scene.axes.end(),
-                                         [&](const SceneAxis& a) { return a.name == key; });
-                         table.Fail(on_axis ? key : std::string_view("axes"),
+                         table.Fail(has_axis(key) ? key : std::string_view("axes"),
                                     "at the corner " + where + " of the axes, state." +
                                         std::string(key) + " " + message);
                        });
