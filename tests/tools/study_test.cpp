@@ -240,6 +240,28 @@ TEST_F(Study, DynamicsGivesTheVehiclesLinearCriticalSpeed) {
   EXPECT_GT(runs.size(), 4u);  // the sweep and the bisection's runs
   EXPECT_NE(ReadFile(dir_ / "runs" / "README.md").find("of the leading wheelset"),
             std::string::npos);
+
+  // The same runs on the table's cubic interpolation: between the nodes at ±0.25 mm the bogie
+  // meets other forces (C¹ in place of piecewise linear), so its growth rates change, and the
+  // summary names the option as a user would repeat it.
+  ASSERT_EQ(Run("study dynamics t.h5 --no-solver --vehicle vehicle.toml --speeds 60,100 "
+                "--interpolation cubic --out cubic"),
+            0)
+      << Err();
+  const auto cubic = CsvRows(dir_ / "cubic" / "speeds.csv");
+  ASSERT_GE(cubic.size(), 2u);
+  double largest_change = 0.0;  // of the growth rate at the swept speeds, 1/s
+  for (std::size_t i = 0; i < 2; ++i) {
+    ASSERT_EQ(cubic[i][1], runs[i][1]);  // the same speed
+    largest_change =
+        std::max(largest_change, std::fabs(std::stod(cubic[i][3]) - std::stod(runs[i][3])));
+  }
+  EXPECT_GT(largest_change, 1e-3);
+  EXPECT_NE(ReadFile(dir_ / "cubic" / "README.md").find("--interpolation cubic"),
+            std::string::npos);
+  EXPECT_EQ(ReadFile(dir_ / "runs" / "README.md").find("--interpolation"), std::string::npos);
+  EXPECT_EQ(Run("study dynamics t.h5 --no-solver --interpolation spline"), 2);
+  EXPECT_NE(Err().find("--interpolation"), std::string::npos) << Err();
 }
 
 TEST_F(Study, HelpShowsTheDefaults) {
