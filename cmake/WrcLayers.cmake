@@ -44,5 +44,6 @@ wrc_layer(core_public DIRS wrc/core)
 # The scene parser checks axes against the runtime's limits (wrc/runtime.h, plain C constants).
 wrc_layer(core DIRS core wrc/core HEADERS wrc/runtime.h)
 wrc_layer(generator_public DIRS wrc/generator)
-wrc_layer(generator DIRS generator)
+# The generator measures a refinement with the runtime's cubic line arithmetic.
+wrc_layer(generator DIRS generator runtime/interp)
 wrc_layer(tools DIRS tools)

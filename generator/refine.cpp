@@ -7,6 +7,7 @@
 //   samples<P>.journal  the midpoint solves of pass P (same record format).
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cinttypes>
@@ -30,10 +31,12 @@
 #include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "runtime/hdf5/table_schema.h"
+#include "runtime/interp/cubic_line.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/scene.h"
 #include "wrc/generator/interrupt.h"
 #include "wrc/generator/worker_threads.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::gen {
 namespace {
@@ -464,12 +467,43 @@ struct IntervalScore {
   }
 };
 
-// Midpoint errors of the linear interpolant (the mean of the interval's end values), per
-// axis and interval.
+using Interpolation = RefineSettings::Interpolation;
+
+// The runtime's cubic lookup at local coordinate t of interval j of axis a, every other
+// coordinate at the node of `on_line` (any node of the grid line): there only this axis' value
+// and slope terms enter (the other axes' bases are 1 and 0), so it is the one-dimensional
+// Hermite cubic with the runtime's limited slopes (runtime/interp/cubic_line.h).
+double CubicAlongAxis(const Axes& axes, const std::vector<std::size_t>& stride,
+                      const std::vector<double>& values, std::uint64_t on_line, std::size_t a,
+                      std::size_t j, double t) {
+  const std::vector<double>& x = axes[a].values;
+  const auto n = static_cast<std::uint64_t>(x.size());
+  const std::uint64_t first = on_line - on_line / stride[a] % n * stride[a];
+  // The slopes of nodes j and j + 1 read at most kWindow - 1 nodes beyond them.
+  const int jj = static_cast<int>(j);
+  const int lo = std::max(0, jj - (cubic::kWindow - 1));
+  const int hi = std::min(static_cast<int>(n) - 1, jj + cubic::kWindow);
+  std::array<double, 2 * cubic::kWindow> f{};
+  for (int m = lo; m <= hi; ++m)
+    f[static_cast<std::size_t>(m - lo)] = values[first + static_cast<std::uint64_t>(m) * stride[a]];
+  const double* xs = x.data() + lo;
+  const int width = hi - lo + 1;
+  double basis[4];
+  cubic::HermiteBasis(t, x[j + 1] - x[j], basis);
+  return basis[0] * f[static_cast<std::size_t>(jj - lo)] +
+         basis[1] * cubic::NodeSlope(xs, width, f.data(), jj - lo) +
+         basis[2] * f[static_cast<std::size_t>(jj + 1 - lo)] +
+         basis[3] * cubic::NodeSlope(xs, width, f.data(), jj + 1 - lo);
+}
+
+// Midpoint errors of the interpolant the table will be read with, per axis and interval: for
+// linear lookups the mean of the interval's end values, for cubic ones the Hermite cubic along
+// the interval's axis.
 std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const TableData& data,
                                                        const std::vector<RefineSample>& samples,
                                                        const std::vector<PointResult>& results,
-                                                       const ErrorModel& model) {
+                                                       const ErrorModel& model,
+                                                       Interpolation interpolation) {
   std::vector<std::vector<IntervalScore>> scores(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) {
     scores[a].resize(axes[a].values.size() > 1 ? axes[a].values.size() - 1 : 0);
@@ -493,7 +527,10 @@ std::vector<std::vector<IntervalScore>> ScoreIntervals(const Axes& axes, const T
     const PointResult left = ResultAt(data, lower), right = ResultAt(data, upper);
     std::vector<double> estimate(left.values.size());
     for (std::size_t k = 0; k < estimate.size(); ++k) {
-      estimate[k] = 0.5 * (left.values[k] + right.values[k]);
+      estimate[k] = interpolation == Interpolation::kCubic
+                        ? CubicAlongAxis(axes, stride, data.values[k], lower, sample.axis,
+                                         sample.interval, 0.5)
+                        : 0.5 * (left.values[k] + right.values[k]);
     }
     const double load = LocalLoad(model, sample.point, {&left.values, &right.values, &mid.values});
     const double e = NormalisedError(model, load, mid.values, estimate);
@@ -786,6 +823,9 @@ class Refinement {
   bool SolveProbes();
   void SaySlopes(const std::vector<double>& errors) const;
   ErrorEstimate FinalCheck(const Axes& axes, const TableData& data);
+  /// Every output at a point, interpolated as the table will be read.
+  std::function<std::vector<double>(const std::vector<double>&)> Lookup(const Axes& axes,
+                                                                        const TableData& data);
   GenerateSummary WriteFinal(const Axes& axes, const TableData& data, const ErrorEstimate& check,
                              const std::string& stop_reason);
   std::size_t Budget() const {
@@ -920,14 +960,12 @@ ErrorEstimate Refinement::FinalCheck(const Axes& axes, const TableData& data) {
   const fs::path journal = work_ / "check.journal";
   const SampleRun run = SolvePoints(scene_, points, z_guess, journal, identity_ + "check",
                                     ThreadsFor(options_, cluster_), stop, ProgressMode::kOff);
+  const std::function<std::vector<double>(const std::vector<double>&)> lookup = Lookup(axes, data);
   std::vector<double> errors;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const PointResult& exact = run.results[i];
     if (!Usable(exact.status) || exact.values.empty()) continue;
-    std::vector<double> estimate(exact.values.size());
-    for (std::size_t k = 0; k < estimate.size(); ++k) {
-      estimate[k] = InterpolateLinear(axes, data, k, points[i]);
-    }
+    const std::vector<double> estimate = lookup(points[i]);
     const double load = LocalLoad(model_, points[i], {&exact.values, &estimate});
     const double e = NormalisedError(model_, load, exact.values, estimate);
     if (!std::isnan(e)) errors.push_back(e);
@@ -935,13 +973,51 @@ ErrorEstimate Refinement::FinalCheck(const Axes& axes, const TableData& data) {
   return Summarise(errors);
 }
 
+std::function<std::vector<double>(const std::vector<double>&)> Refinement::Lookup(
+    const Axes& axes, const TableData& data) {
+  if (settings_.interpolation == Interpolation::kLinear) {
+    return [&axes, &data](const std::vector<double>& point) {
+      std::vector<double> values(data.values.size());
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        values[k] = InterpolateLinear(axes, data, k, point);
+      }
+      return values;
+    };
+  }
+  // Cubic lookups anywhere in the grid are the runtime's: the grid written as a table in the
+  // work directory and read back, so the estimate is what a simulator will get.
+  const fs::path path = work_ / "check.h5";
+  TableProvenance provenance;
+  provenance.rail_sha256 = Sha256FileHex(scene_.base.rail.path);
+  provenance.wheel_sha256 = Sha256FileHex(scene_.base.wheel.path);
+  provenance.created = IsoTimestampUtc();
+  std::error_code ignored;
+  fs::remove(path, ignored);
+  WriteTableFile(path, WithAxes(scene_, axes), data, provenance);
+  auto table = std::make_shared<wrc::Table>(path.string());
+  fs::remove(path, ignored);
+  table->set_interpolation(wrc::Interpolation::kCubic);
+  std::vector<std::size_t> order;  // the table's output index of each scene output
+  for (const std::string& name : scene_.outputs) {
+    order.push_back(static_cast<std::size_t>(table->output_index(name)));
+  }
+  return [table, order](const std::vector<double>& point) {
+    const std::vector<double> out = table->eval(point);
+    std::vector<double> values(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) values[k] = out[order[k]];
+    return values;
+  };
+}
+
 std::string TargetDescription(const RefineSettings& settings) {
-  nlohmann::json target = {{"load_fraction", settings.load_fraction},
-                           {"outputs", settings.outputs},
-                           {"max_points", settings.max_points},
-                           {"max_passes", settings.max_passes},
-                           {"samples", settings.samples},
-                           {"seed", settings.seed}};
+  nlohmann::json target = {
+      {"load_fraction", settings.load_fraction},
+      {"outputs", settings.outputs},
+      {"max_points", settings.max_points},
+      {"max_passes", settings.max_passes},
+      {"samples", settings.samples},
+      {"seed", settings.seed},
+      {"interpolation", settings.interpolation == Interpolation::kCubic ? "cubic" : "linear"}};
   for (const auto& [name, value] : settings.absolute) target["absolute"][name] = value;
   for (const auto& [name, value] : settings.min_step) target["min_step"][name] = value;
   if (settings.slope) {
@@ -1187,10 +1263,38 @@ double SymmetricSlope(const std::vector<double>& offsets, const std::vector<doub
   return num / den;
 }
 
+// The flat index of the node at `point` (a node on every axis, as the slope state is).
+std::uint64_t NodeAt(const Axes& axes, const std::vector<double>& point) {
+  const std::vector<std::size_t> stride = Strides(axes);
+  std::uint64_t flat = 0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    const auto it = std::lower_bound(v.begin(), v.end(), point[a]);
+    if (it == v.end() || *it != point[a]) {
+      throw std::logic_error("NodeAt: the point is not a node of axis " + axes[a].name);
+    }
+    flat += static_cast<std::uint64_t>(it - v.begin()) * stride[a];
+  }
+  return flat;
+}
+
+// The runtime's cubic lookup of output k at the node `node` moved to x along axis a.
+double CubicAt(const Axes& axes, const TableData& data, std::size_t k, std::uint64_t node,
+               std::size_t a, double x) {
+  const std::vector<double>& v = axes[a].values;
+  x = std::clamp(x, v.front(), v.back());
+  std::size_t j = static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), x) - v.begin());
+  j = std::min(std::max<std::size_t>(j, 1), v.size() - 1) - 1;
+  return CubicAlongAxis(axes, Strides(axes), data.values[k], node, a, j,
+                        (x - v[j]) / (v[j + 1] - v[j]));
+}
+
 std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneAxis>& axes,
                                     const TableData& data, const std::vector<PointResult>& probes) {
   const RefineSettings::Slope& slope = *scene.refine->slope;
   const ErrorModel model = MakeErrorModel(scene, *scene.refine);
+  const bool cubic = scene.refine->interpolation == Interpolation::kCubic;
+  const std::uint64_t state_node = NodeAt(axes, slope.at);
   std::vector<SlopeCheck> checks(axes.size());
   std::size_t probe = 0;
   for (std::size_t a = 0; a < axes.size(); ++a) {
@@ -1222,7 +1326,8 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
       for (int s = 0; s < 2; ++s) {
         for (int j = 0; j < n; ++j) {
           exact[s].push_back(side[s][j]->values[k]);
-          table[s].push_back(InterpolateLinear(axes, data, k, points[s][j]));
+          table[s].push_back(cubic ? CubicAt(axes, data, k, state_node, a, points[s][j][a])
+                                   : InterpolateLinear(axes, data, k, points[s][j]));
         }
       }
       const double exact_slope = SymmetricSlope(offsets, exact[0], exact[1]);
@@ -1282,7 +1387,8 @@ RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>
                                 const std::vector<PointResult>& results,
                                 const std::vector<PointResult>& probes) {
   const RefineSettings& settings = *scene.refine;
-  const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings));
+  const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings),
+                                     settings.interpolation);
   RefineDecision decision;
   for (const auto& axis_scores : scores) {
     for (const IntervalScore& s : axis_scores) {

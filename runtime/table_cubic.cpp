@@ -38,89 +38,19 @@
 #include <cstdint>
 #include <limits>
 
+#include "runtime/interp/cubic_line.h"
 #include "runtime/kernels.h"
 #include "runtime/table.h"
 
 namespace wrc::runtime {
 namespace {
 
-constexpr int kWindow = 5;  // Nodes in the slope estimate's polynomial (degree 4).
+using cubic::kWindow;
+using cubic::WindowStart;
 
-// Derivative at x[j] of the polynomial through (x[m], f[m]), m < width.
-double PolynomialSlope(const double* x, const double* f, int width, int j) {
-  double slope = 0.0;
-  for (int m = 0; m < width; ++m) {
-    double coefficient = 0.0;
-    if (m == j) {
-      for (int k = 0; k < width; ++k) {
-        if (k != j) coefficient += 1.0 / (x[j] - x[k]);
-      }
-    } else {
-      // L_m'(x_j): of the product rule's terms only the one differentiating (x - x_j) survives.
-      double numerator = 1.0;
-      double denominator = 1.0;
-      for (int k = 0; k < width; ++k) {
-        if (k == m) continue;
-        denominator *= x[m] - x[k];
-        if (k != j) numerator *= x[j] - x[k];
-      }
-      coefficient = numerator / denominator;
-    }
-    slope += coefficient * f[m];
-  }
-  return slope;
-}
-
-// The limiter described at the top of the file.
-double LimitSlope(double slope, bool has_left, double left, bool has_right, double right) {
-  double direction = 0.0;
-  double bound = 0.0;
-  if (has_left && has_right) {
-    if (left * right <= 0.0) return 0.0;
-    direction = left > 0.0 ? 1.0 : -1.0;
-    bound = 3.0 * std::min(std::abs(left), std::abs(right));
-  } else if (has_left || has_right) {
-    const double secant = has_left ? left : right;
-    if (secant == 0.0) return 0.0;
-    direction = secant > 0.0 ? 1.0 : -1.0;
-    bound = 3.0 * std::abs(secant);
-  } else {
-    return 0.0;
-  }
-  if (slope * direction <= 0.0) return 0.0;
-  return direction * std::min(std::abs(slope), bound);
-}
-
-// First node of the slope window of node j on an axis of n nodes whose finite values at j span
-// [lo, hi] (at most 4 nodes either side).
-int WindowStart(int j, int lo, int hi) {
-  const int width = std::min(kWindow, hi - lo + 1);
-  return std::clamp(j - width / 2, lo, hi - width + 1);
-}
-
-// Limited slopes of one grid line. Non-finite values (failed nodes) are left out: windows and
-// secants use only the finite run around each node, so a NaN node does not spoil its
-// neighbours' slopes; its own slope is NaN.
+// Limited slopes of one grid line (cubic::NodeSlope at every node).
 void LineSlopes(const double* x, int n, const double* f, double* slope) {
-  for (int j = 0; j < n; ++j) {
-    if (!std::isfinite(f[j])) {
-      slope[j] = std::numeric_limits<double>::quiet_NaN();
-      continue;
-    }
-    int lo = j;
-    while (lo > 0 && j - lo < kWindow - 1 && std::isfinite(f[lo - 1])) --lo;
-    int hi = j;
-    while (hi < n - 1 && hi - j < kWindow - 1 && std::isfinite(f[hi + 1])) ++hi;
-    const int width = std::min(kWindow, hi - lo + 1);
-    const int start = WindowStart(j, lo, hi);
-    const double estimate =
-        width >= 2 ? PolynomialSlope(x + start, f + start, width, j - start) : 0.0;
-    const bool has_left = j > lo;
-    const bool has_right = j < hi;
-    const double left = has_left ? (f[j] - f[j - 1]) / (x[j] - x[j - 1]) : 0.0;
-    const double right = has_right ? (f[j + 1] - f[j]) / (x[j + 1] - x[j]) : 0.0;
-    slope[j] = LimitSlope(estimate, has_left, left, has_right, right);
-  }
+  for (int j = 0; j < n; ++j) slope[j] = cubic::NodeSlope(x, n, f, j);
 }
 
 }  // namespace
@@ -230,14 +160,8 @@ void Table::EvalCubic(const Located& located, double* out, double* d_out) const 
   terms.upper_offset = cubic_offset_[1];
   for (int j = 0; j < terms.n_active; ++j) {
     const double t = located.cell[j].t;
-    const double h = located.cell[j].step;
     const double t2 = t * t;
-    const double t3 = t2 * t;
-    double* basis = terms.basis[j];
-    basis[0] = 2.0 * t3 - 3.0 * t2 + 1.0;  // h00
-    basis[1] = h * (t3 - 2.0 * t2 + t);    // h·h10
-    basis[2] = -2.0 * t3 + 3.0 * t2;       // h01
-    basis[3] = h * (t3 - t2);              // h·h11
+    cubic::HermiteBasis(t, located.cell[j].step, terms.basis[j]);
     terms.axis[j] = active_axes_[static_cast<std::size_t>(j)];
     terms.derivative_zero[j] = located.derivative_zero[j];
     if (d_out == nullptr) continue;

@@ -331,9 +331,9 @@ std::map<std::string, double, std::less<>> ReadPositiveByName(
   return values;
 }
 
-const std::vector<std::string_view> kRefineKeys = {"target",     "absolute",   "outputs",
-                                                   "max_points", "max_passes", "samples",
-                                                   "seed",       "min_step",   "slope"};
+const std::vector<std::string_view> kRefineKeys = {
+    "target",     "absolute", "outputs", "interpolation", "max_points",
+    "max_passes", "samples",  "seed",    "min_step",      "slope"};
 const std::vector<std::string_view> kSlopeKeys = {"target", "at", "step", "window", "axes"};
 
 void RejectUnknownKeys(const Section& section, const std::vector<std::string_view>& allowed) {
@@ -503,6 +503,10 @@ RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
                 "the force target is relative to the wheel load, which a prescribed-z scene "
                 "only knows when fz is among table.outputs");
   }
+  settings.interpolation = refine.Choice("interpolation",
+                                         {{"linear", RefineSettings::Interpolation::kLinear},
+                                          {"cubic", RefineSettings::Interpolation::kCubic}},
+                                         settings.interpolation);
   const std::int64_t points = static_cast<std::int64_t>(scene.PointCount());
   settings.max_points = static_cast<std::size_t>(
       ReadInteger(refine, "max_points", std::max<std::int64_t>(points, 1'000'000), points,

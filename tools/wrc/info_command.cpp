@@ -128,8 +128,11 @@ void PrintRefinement(const std::string& path, const TableInfo& info) {
       std::cout << ", " << name << " within " << value.get<double>();
     }
   }
-  std::cout << " (at sampled interval midpoints); budget " << target.value("max_points", 0)
-            << " points, " << target.value("max_passes", 0) << " passes\n";
+  // Tables refined before the target named its interpolation were refined for linear lookups.
+  const bool cubic = target.value("interpolation", std::string("linear")) == "cubic";
+  std::cout << " (at sampled interval midpoints, " << (cubic ? "cubic" : "multilinear")
+            << " lookups); budget " << target.value("max_points", 0) << " points, "
+            << target.value("max_passes", 0) << " passes\n";
   int pass = 0;
   for (const nlohmann::json& p : r["passes"]) {
     std::cout << "  pass " << pass++ << ": " << p.value("points", 0) << " points ("
@@ -141,9 +144,10 @@ void PrintRefinement(const std::string& path, const TableInfo& info) {
   std::cout << "  stopped: " << r["stop"].get<std::string>() << '\n';
   const nlohmann::json& e = r["estimated_error"];
   if (e.is_object() && e["p95"].is_number()) {
-    std::cout << "  estimated error at " << e.value("points", 0)
-              << " random points (multilinear): p50 " << e["p50"].get<double>() << ", p95 "
-              << e["p95"].get<double>() << ", max " << e["max"].get<double>() << " × target\n";
+    std::cout << "  estimated error at " << e.value("points", 0) << " random points ("
+              << (cubic ? "cubic" : "multilinear") << "): p50 " << e["p50"].get<double>()
+              << ", p95 " << e["p95"].get<double>() << ", max " << e["max"].get<double>()
+              << " × target\n";
   }
   if (e.is_object() && e.contains("slope") && e["slope"].is_object()) {
     std::cout << "  slope errors at the slope state:";

@@ -45,6 +45,10 @@ struct RefineSettings {
   /// The outputs whose error drives the refinement, in scene output order: the force outputs
   /// among the scene's outputs and those with an absolute target.
   std::vector<std::string> outputs;
+  /// The interpolation the table will be read with (`interpolation`): its error is the one
+  /// measured, so a table for cubic lookups gets the nodes cubic lookups need.
+  enum class Interpolation { kLinear, kCubic };
+  Interpolation interpolation = Interpolation::kLinear;
   /// Budget: the table never grows beyond this many grid points.
   std::size_t max_points = 1'000'000;
   /// Budget: at most this many refinement passes after the starting grid.
