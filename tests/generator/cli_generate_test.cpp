@@ -350,6 +350,50 @@ TEST_F(CliGenerateTest, InfoDescribesTheTable) {
   EXPECT_NE(human.out.find("status: ok 40"), std::string::npos) << human.out;
 }
 
+// --estimate solves a few short runs of the grid and writes nothing: 8 runs of up to 4 points
+// along the last axis (here y, 6 nodes), the grid's point count, and for a refinement its budget.
+TEST(CliGenerate, EstimateSolvesAFewPointsAndWritesNothing) {
+  ScratchDir dir("cli_estimate");
+  const fs::path scene =
+      test::WriteFile(dir / "scene.toml", test::TinyScene(test::DefaultTinyTable()));
+  const test::CommandResult plain = test::RunCommand(
+      Quoted(test::WrcBinary()) + " generate " + Quoted(scene.string()) + " --estimate --threads 2",
+      dir.path());
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("from 32 solves"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("the scene's grid: 12 points"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("on 2 threads"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("failed"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("refinement"), std::string::npos) << plain.out;
+  const fs::path refined = test::WriteFile(
+      dir / "refined.toml",
+      test::TinyScene(test::DefaultTinyTable() + "\n[table.refine]\nmax_points = 5000\n"));
+  const test::CommandResult refine = test::RunCommand(
+      Quoted(test::WrcBinary()) + " generate " + Quoted(refined.string()) + " --estimate",
+      dir.path());
+  ASSERT_EQ(refine.exit_code, 0) << refine.err;
+  EXPECT_NE(refine.out.find("budget of 5000 points"), std::string::npos) << refine.out;
+  for (const auto& entry : fs::directory_iterator(dir.path())) {  // no table, journal, or .tmp
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".h5"), std::string::npos) << name;
+    EXPECT_EQ(name.find("journal"), std::string::npos) << name;
+  }
+}
+
+// EstimateGeneration times one solve per point of each run, a run no longer than its axis.
+TEST(CliGenerate, EstimateCountsTheSolvesItTimes) {
+  ScratchDir dir("estimate_counts");
+  const Scene scene = LoadScene(test::WriteFile(
+      dir / "scene.toml", test::TinyScene("axes = [\"y\"]\ny = [0.0, 2.0]\noutputs = [\"fy\"]")));
+  const GenerateEstimate e = EstimateGeneration(scene, 3, 4);
+  EXPECT_EQ(e.solves, 6);  // 3 runs, each along all 2 nodes of the only axis
+  EXPECT_EQ(e.failed, 0);
+  EXPECT_EQ(e.start_points, 2u);
+  EXPECT_EQ(e.max_points, 2u);
+  EXPECT_GT(e.mean_solve_s, 0.0);
+  EXPECT_GE(e.max_solve_s, e.mean_solve_s);
+}
+
 TEST(CliGenerateErrors, BadInputExitsWith2AndSaysWhy) {
   ScratchDir dir("cli_errors");
   struct Case {
@@ -377,6 +421,7 @@ TEST(CliGenerateErrors, BadInputExitsWith2AndSaysWhy) {
   const test::CommandResult no_output = test::RunCommand(
       Quoted(test::WrcBinary()) + " generate " + Quoted((dir / "bad.toml").string()), dir.path());
   EXPECT_EQ(no_output.exit_code, 2);
+  EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
 
   test::WriteFile(dir / "not_a_table.h5", "plain text");
   for (const char* table : {"not_a_table.h5", "absent.h5"}) {

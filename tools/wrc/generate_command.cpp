@@ -1,11 +1,14 @@
-// `wrc generate SCENE.toml -o TABLE.h5 [--threads N] [--resume] [--quiet]`
+// `wrc generate SCENE.toml -o TABLE.h5 [--threads N] [--resume] [--quiet]`, and
+// `wrc generate SCENE.toml --estimate`
 // (docs/reference/table-layout.md).
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "tools/wrc/commands.h"
 #include "tools/wrc/thread_option.h"
@@ -71,6 +74,56 @@ void PrintSummary(const std::string& output, const GenerateSummary& s) {
   }
 }
 
+// "about 40 s", "about 12 min", "about 2 h 05 min".
+std::string Duration(double seconds) {
+  std::ostringstream text;
+  text << "about ";
+  if (seconds < 90.0) {
+    text << std::max(1, static_cast<int>(seconds + 0.5)) << " s";
+  } else if (seconds < 5400.0) {
+    text << static_cast<int>(seconds / 60.0 + 0.5) << " min";
+  } else {
+    const int minutes = static_cast<int>(seconds / 60.0 + 0.5);
+    text << minutes / 60 << " h " << std::setw(2) << std::setfill('0') << minutes % 60 << " min";
+  }
+  return text.str();
+}
+
+// Solves of a refinement beyond its grid points: the interval midpoints, the slope target's
+// probes and the final check. Measured: 404 831 solves for the 395 010 points of
+// tables/mbench_vehicle.toml (2.5 %).
+constexpr double kRefinementSolvesPerPoint = 1.03;
+// A refinement's nodes gather where the contact changes (flange, two-point contact, the largest
+// loads), where solves take longer than at the starting grid's nodes: the mean solve of the
+// finished table over that of the estimate's, measured 1.4 on tables/mbench_vehicle.toml at its
+// static load (60 000 points) and 2.0 on the whole scene (395 010 points, with other work beside).
+constexpr double kRefinedSolveRatio = 2.0;
+
+void PrintEstimate(const std::string& scene_path, const Scene& scene, int threads) {
+  const GenerateEstimate e = EstimateGeneration(scene);
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int workers = threads > 0 ? threads : static_cast<int>(cores);
+  const double per_point = e.mean_solve_s / workers;  // the threads scale about linearly
+  std::cout << "estimate for " << scene_path << " from " << e.solves << " solves (" << e.solves
+            << " grid points in short runs along " << scene.axes.back().name
+            << ", warm-started as a run does), one thread:\n"
+            << std::setprecision(3) << "  a solve takes " << 1000.0 * e.mean_solve_s
+            << " ms on average, " << 1000.0 * e.max_solve_s << " ms at most";
+  if (e.failed > 0) std::cout << "; " << e.failed << " of them failed";
+  std::cout << "\n  the scene's grid: " << e.start_points << " points, "
+            << Duration(static_cast<double>(e.start_points) * per_point) << " on " << workers
+            << (workers == 1 ? " thread" : " threads") << '\n';
+  if (scene.refine) {
+    const double budget = static_cast<double>(e.max_points) * kRefinementSolvesPerPoint * per_point;
+    std::cout << "  the refinement starts from that grid and places nodes until every sampled "
+                 "midpoint meets its target or the budget of "
+              << e.max_points << " points is spent; the whole budget with its midpoint solves "
+              << "takes " << Duration(budget) << " at the grid's solve time, up to "
+              << Duration(kRefinedSolveRatio * budget)
+              << " where the nodes gather at the harder states\n";
+  }
+}
+
 }  // namespace
 
 void AddGenerateCommand(CLI::App& app, int* exit_code) {
@@ -85,18 +138,29 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("SCENE", *scene_path,
                   "Scene file (TOML, " + DocFile("reference/case-files.md") + ")")
       ->required();
-  cmd->add_option("-o,--output", *output, "Table to write (HDF5)")->required();
+  auto estimate = std::make_shared<bool>(false);
+  cmd->add_option("-o,--output", *output, "Table to write (HDF5; not with --estimate)");
   cmd->add_option("--threads", *threads,
                   "Worker threads (default: all cores, shared among MPI ranks on one machine)")
       ->check(ThreadCount(false));
   cmd->add_flag("--resume", *resume,
                 "Continue an interrupted run from TABLE.h5.journal, reusing its points");
   cmd->add_flag("--quiet", *quiet, "No progress on stderr");
+  cmd->add_flag("--estimate", *estimate,
+                "Write nothing: the run's points and time from a few solves of the scene's grid");
   cmd->add_flag("--no-warm-start", *cold_start,
                 "Start every prescribed-fz solve from first contact instead of from the previous "
                 "point's z (slower; results differ in the last digits)");
   cmd->callback([=]() {
     try {
+      if (*estimate) {
+        PrintEstimate(*scene_path, LoadScene(*scene_path), *threads);
+        *exit_code = kExitOk;
+        return;
+      }
+      if (output->empty()) {
+        throw InputError("-o/--output is required: the table to write (or --estimate)");
+      }
       RequireNotAnInput(*output, {*scene_path});
       const Scene scene = LoadScene(*scene_path);
       GenerateOptions options;

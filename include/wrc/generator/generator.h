@@ -166,6 +166,23 @@ class GenerateAborted : public InputError {
 /// with their status and message.
 GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options);
 
+/// What `wrc generate --estimate` measures before a run: short runs of the scene's grid solved
+/// as the generator solves them (consecutive points along the last axis, each prescribed-fz
+/// point warm-started from its predecessor's z).
+struct GenerateEstimate {
+  std::size_t start_points = 0;  ///< Points of the scene's grid (a refinement's starting grid).
+  std::size_t max_points = 0;    ///< A refinement's point budget; start_points without one.
+  int solves = 0;                ///< Solves measured.
+  int failed = 0;                ///< Of those, not converged or errors.
+  double mean_solve_s = 0.0;     ///< Mean wall time of a solve on one thread.
+  double max_solve_s = 0.0;
+};
+
+/// Solves `runs` short runs of up to `run_length` points at grid places drawn with `seed`, one
+/// thread, and times them. Throws InputError where the scene cannot be solved at all.
+GenerateEstimate EstimateGeneration(const Scene& scene, int runs = 8, int run_length = 4,
+                                    std::uint64_t seed = 1);
+
 /// True when this build can split work across MPI ranks.
 bool GeneratorSupportsMpi();
 
