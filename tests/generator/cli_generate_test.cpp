@@ -380,6 +380,28 @@ TEST(CliGenerate, EstimateSolvesAFewPointsAndWritesNothing) {
   }
 }
 
+// wrc info tells which lookups a table was refined for, in its target and its error estimate;
+// a table refined before the target named them was refined for linear ones.
+TEST(CliGenerate, InfoNamesTheInterpolationATableWasRefinedFor) {
+  ScratchDir dir("cli_info_interpolation");
+  for (const std::string mode : {"linear", "cubic"}) {
+    const fs::path scene = test::WriteFile(
+        dir / (mode + ".toml"),
+        test::TinyScene("axes = [\"y\"]\ny = {from = 2.0, to = 8.0, count = 3}\n"
+                        "outputs = [\"fx\", \"fy\", \"fz\"]\n[table.refine]\ntarget = 0.05\n"
+                        "samples = 1\nmax_passes = 1\ninterpolation = \"" +
+                        mode + "\"\n"));
+    const fs::path table = dir / (mode + ".h5");
+    ASSERT_EQ(test::RunCommand(Generate(scene, table, "--quiet"), dir.path()).exit_code, 0);
+    const test::CommandResult info =
+        test::RunCommand(Quoted(test::WrcBinary()) + " info " + Quoted(table.string()), dir.path());
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const std::string named = mode == "cubic" ? "cubic" : "multilinear";
+    EXPECT_NE(info.out.find("midpoints, " + named + " lookups)"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("random points (" + named + ")"), std::string::npos) << info.out;
+  }
+}
+
 // EstimateGeneration times one solve per point of each run, a run no longer than its axis.
 TEST(CliGenerate, EstimateCountsTheSolvesItTimes) {
   ScratchDir dir("estimate_counts");
