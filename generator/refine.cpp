@@ -1264,8 +1264,8 @@ double SymmetricSlope(const std::vector<double>& offsets, const std::vector<doub
 }
 
 // The flat index of the node at `point` (a node on every axis, as the slope state is).
-std::uint64_t NodeAt(const Axes& axes, const std::vector<double>& point) {
-  const std::vector<std::size_t> stride = Strides(axes);
+std::uint64_t NodeAt(const Axes& axes, const std::vector<std::size_t>& stride,
+                     const std::vector<double>& point) {
   std::uint64_t flat = 0;
   for (std::size_t a = 0; a < axes.size(); ++a) {
     const std::vector<double>& v = axes[a].values;
@@ -1279,14 +1279,13 @@ std::uint64_t NodeAt(const Axes& axes, const std::vector<double>& point) {
 }
 
 // The runtime's cubic lookup of output k at the node `node` moved to x along axis a.
-double CubicAt(const Axes& axes, const TableData& data, std::size_t k, std::uint64_t node,
-               std::size_t a, double x) {
+double CubicAt(const Axes& axes, const std::vector<std::size_t>& stride, const TableData& data,
+               std::size_t k, std::uint64_t node, std::size_t a, double x) {
   const std::vector<double>& v = axes[a].values;
   x = std::clamp(x, v.front(), v.back());
   std::size_t j = static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), x) - v.begin());
   j = std::min(std::max<std::size_t>(j, 1), v.size() - 1) - 1;
-  return CubicAlongAxis(axes, Strides(axes), data.values[k], node, a, j,
-                        (x - v[j]) / (v[j + 1] - v[j]));
+  return CubicAlongAxis(axes, stride, data.values[k], node, a, j, (x - v[j]) / (v[j + 1] - v[j]));
 }
 
 std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneAxis>& axes,
@@ -1294,7 +1293,8 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
   const RefineSettings::Slope& slope = *scene.refine->slope;
   const ErrorModel model = MakeErrorModel(scene, *scene.refine);
   const bool cubic = scene.refine->interpolation == Interpolation::kCubic;
-  const std::uint64_t state_node = NodeAt(axes, slope.at);
+  const std::vector<std::size_t> stride = Strides(axes);
+  const std::uint64_t state_node = NodeAt(axes, stride, slope.at);
   std::vector<SlopeCheck> checks(axes.size());
   std::size_t probe = 0;
   for (std::size_t a = 0; a < axes.size(); ++a) {
@@ -1326,7 +1326,7 @@ std::vector<SlopeCheck> CheckSlopes(const Scene& scene, const std::vector<SceneA
       for (int s = 0; s < 2; ++s) {
         for (int j = 0; j < n; ++j) {
           exact[s].push_back(side[s][j]->values[k]);
-          table[s].push_back(cubic ? CubicAt(axes, data, k, state_node, a, points[s][j][a])
+          table[s].push_back(cubic ? CubicAt(axes, stride, data, k, state_node, a, points[s][j][a])
                                    : InterpolateLinear(axes, data, k, points[s][j]));
         }
       }

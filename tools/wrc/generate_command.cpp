@@ -8,9 +8,9 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 
 #include "tools/wrc/commands.h"
+#include "tools/wrc/study_common.h"
 #include "tools/wrc/thread_option.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
@@ -101,8 +101,7 @@ constexpr double kRefinedSolveRatio = 2.0;
 
 void PrintEstimate(const std::string& scene_path, const Scene& scene, int threads) {
   const GenerateEstimate e = EstimateGeneration(scene);
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int workers = threads > 0 ? threads : static_cast<int>(cores);
+  const int workers = threads > 0 ? threads : AllCores();
   const double per_point = e.mean_solve_s / workers;  // the threads scale about linearly
   std::cout << "estimate for " << scene_path << " from " << e.solves << " solves (" << e.solves
             << " grid points in short runs along " << scene.axes.back().name

@@ -164,6 +164,10 @@ class TableStudy {
  private:
   Trajectory Simulated(double speed_m_s, const std::function<dynamics::ForceSource()>& make);
   double TimeStep() const { return vehicle_ ? vehicle_->time_step : parameters_.time_step; }
+  // The --interpolation option as a user would repeat it, empty for the default.
+  std::string InterpolationFlag() const {
+    return options_.interpolation == "linear" ? "" : " --interpolation " + options_.interpolation;
+  }
   Trajectory TableRun(double speed_m_s);
   double TableRate(double speed_m_s);
   void SweepTable();
@@ -191,10 +195,6 @@ class TableStudy {
 
   const DynamicsOptions& options_;
   fs::path out_;
-  // The option as a user would repeat it, empty for the default.
-  std::string InterpolationFlag() const {
-    return options_.interpolation == "linear" ? "" : " --interpolation " + options_.interpolation;
-  }
   wrc::Table table_;
   std::unique_ptr<StoredScene> stored_;
   Parameters parameters_;
