@@ -219,6 +219,20 @@ TEST_F(Study, DynamicsGivesTheVehiclesLinearCriticalSpeed) {
   EXPECT_NE(md.find("linear critical speed"), std::string::npos) << md;
   EXPECT_FALSE(fs::exists(dir_ / "out" / "speeds.csv"));  // no runs asked for
 
+  // --solver-elements: the solver source alone at other elements (here 2 mm, twice the fixture's,
+  // so that the check is quick): its derivatives move, the table's stay, the summary says so.
+  ASSERT_EQ(Run("study dynamics t.h5 --linear-only --vehicle " + vehicle.string() +
+                " --solver-elements 2 --out coarse"),
+            0)
+      << Err();
+  const auto fine = CsvRows(dir_ / "out" / "linear.csv");
+  const auto coarse = CsvRows(dir_ / "coarse" / "linear.csv");
+  ASSERT_EQ(fine.size(), coarse.size());
+  ASSERT_EQ(fine[1][0], "solver");
+  EXPECT_EQ(coarse[0], fine[0]);  // the table's row
+  EXPECT_GT(std::fabs(std::stod(coarse[1][3]) / std::stod(fine[1][3]) - 1.0), 1e-3);  // dfy_dy
+  EXPECT_NE(ReadFile(dir_ / "coarse" / "README.md").find("--solver-elements 2"), std::string::npos);
+
   // The bogie integrated in time on the table, from a disturbance inside its central ±0.25 mm:
   // its critical speed by bisection on the growth rate is the eigenvalues' above, on the same
   // table's linearised contact (an independent computation: Eigen's eigensolver against RK4
@@ -260,6 +274,11 @@ TEST_F(Study, DynamicsGivesTheVehiclesLinearCriticalSpeed) {
   EXPECT_NE(ReadFile(dir_ / "cubic" / "README.md").find("--interpolation cubic"),
             std::string::npos);
   EXPECT_EQ(ReadFile(dir_ / "runs" / "README.md").find("--interpolation"), std::string::npos);
+  // --no-runs: the curves without the time integrations.
+  ASSERT_EQ(Run("study dynamics t.h5 --no-solver --no-runs --vehicle vehicle.toml --out curves"), 0)
+      << Err();
+  EXPECT_TRUE(fs::exists(dir_ / "curves" / "curving.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "curves" / "speeds.csv"));
   EXPECT_EQ(Run("study dynamics t.h5 --no-solver --interpolation spline"), 2);
   EXPECT_NE(Err().find("--interpolation"), std::string::npos) << Err();
 }
