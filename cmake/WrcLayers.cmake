@@ -38,6 +38,9 @@ endfunction()
 # What each part sees. Public layers go to the users of a library (PUBLIC / INTERFACE); the
 # private ones add the part's own sources.
 wrc_layer(hdf5 DIRS runtime/hdf5)
+# The table formats (runtime/format): the readers the runtime loads with and the flat writer of
+# `wrc export`. The schema's names come from runtime/hdf5/table_schema.h, in either build.
+wrc_layer(format DIRS runtime/format runtime/hdf5 HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(runtime_public HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(runtime DIRS runtime HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(core_public DIRS wrc/core)

@@ -8,7 +8,6 @@
 #include <new>
 #include <utility>
 
-#include "runtime/hdf5/hdf5.h"
 #include "runtime/table.h"
 #include "wrc/runtime.h"
 
@@ -91,9 +90,6 @@ int wrc_table_open(const char* path, wrc_table** out) {
   } catch (const wrc::TableError& error) {
     SetLastError("wrc_table_open: %s", error.what());
     return error.code();
-  } catch (const wrc::h5::Error& error) {  // An HDF5 failure while reading a valid-looking file.
-    SetLastError("wrc_table_open: %s", error.what());
-    return WRC_ERR_FORMAT;
   } catch (const std::bad_alloc&) {
     SetLastError("wrc_table_open: %s: out of memory", path);
     return WRC_ERR_OUT_OF_MEMORY;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/format/table_content.h"
 #include "wrc/runtime.h"
 #include "wrc/runtime.hpp"
 
@@ -24,8 +25,8 @@ struct Kernels;  // kernels.h
 
 /// Doubles allocated past the end of the value array: with more than 8 outputs the multilinear
 /// kernel reads whole chunks of 8 and may run up to 7 doubles past the last datum (kernels.inc).
-/// (The cubic kernel reads exactly its cell's data.)
-constexpr std::size_t kReadPadding = 8;
+/// (The cubic kernel reads exactly its cell's data.) The readers reserve them.
+constexpr std::size_t kReadPadding = format::kValuePadding;
 
 /// Records the calling thread's error message (printf-style; never allocates). Implemented in
 /// c_api.cpp next to wrc_last_error().
@@ -127,6 +128,8 @@ class Table {
   };
 
   Table() = default;
+  /// The table of checked content: axes indexed, values padded, cell flags set.
+  static Table FromContent(format::TableContent content);
   /// Fills active_axes_, node strides and lookup_ once axes_ is final.
   void IndexAxes();
   /// Offsets, in doubles, of a cell's corners from its lower corner when each node holds

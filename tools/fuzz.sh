@@ -14,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-read -r -a targets <<<"${WRC_FUZZ_TARGETS:-fuzz_profile fuzz_case fuzz_scene fuzz_table}"
+read -r -a targets <<<"${WRC_FUZZ_TARGETS:-fuzz_profile fuzz_case fuzz_scene fuzz_table fuzz_flat_table}"
 jobs="${WRC_JOBS:-2}"
 sanitizers="${WRC_FUZZ_SANITIZERS-address,undefined}"
 build=build-fuzz
@@ -32,8 +32,8 @@ fi
 seconds="${1:-60}"
 shift || true
 declare -A dictionary=([fuzz_profile]=profile.dict [fuzz_case]=toml.dict [fuzz_scene]=toml.dict
-  [fuzz_table]=hdf5.dict)
-declare -A max_len=([fuzz_profile]=4096 [fuzz_case]=4096 [fuzz_scene]=4096 [fuzz_table]=32768)
+  [fuzz_table]=hdf5.dict [fuzz_flat_table]=flat.dict)
+declare -A max_len=([fuzz_profile]=4096 [fuzz_case]=4096 [fuzz_scene]=4096 [fuzz_table]=32768 [fuzz_flat_table]=16384)
 # An impossible allocation fails with NULL as in a normal build (HDF5 then reports an error),
 # instead of ASan's default abort.
 export ASAN_OPTIONS="allocator_may_return_null=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"

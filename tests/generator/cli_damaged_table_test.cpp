@@ -491,5 +491,60 @@ TEST(CliStoredProfile, AnUnreadableProfileIsNamedAsTheTables) {
   EXPECT_EQ(result.err.find("wrc_verify_"), std::string::npos) << result.err;
 }
 
+// ---- `wrc export` -------------------------------------------------------------------------------
+
+CommandResult Export(const fs::path& table, const fs::path& output) {
+  return RunCommand(
+      Quoted(WrcBinary()) + " export " + Quoted(table.string()) + " -o " + Quoted(output.string()),
+      table.parent_path());
+}
+
+// The flat table holds the same numbers; a damaged table, a missing one or an output that is
+// the input are refused with exit 2, and nothing is written.
+TEST(CliExport, WritesTheSameNumbersAndRefusesWhatTheRuntimeRefuses) {
+  ScratchDir dir("export");
+  const fs::path table = dir / "table.h5";
+  TableContent content = ValidTable();
+  content.sealed = true;
+  WriteTable(table.string(), content);
+  const fs::path flat = dir / "table.wrct";
+  const CommandResult exported = Export(table, flat);
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  EXPECT_NE(exported.out.find("2 axes, 2 outputs, 15 nodes"), std::string::npos) << exported.out;
+  EXPECT_EQ(Values(flat), Values(table));
+  EXPECT_EQ(Table(flat.string()).attribute("scene"), Table(table.string()).attribute("scene"));
+  const CommandResult info =
+      RunCommand(Quoted(WrcBinary()) + " info --json " + Quoted(flat.string()), dir.path());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json described = nlohmann::json::parse(info.out);
+  EXPECT_EQ(described["format"], "wrc-flat-table");
+  EXPECT_EQ(described["points"], 15);
+  EXPECT_EQ(described["status"]["ok"], 15);
+  EXPECT_EQ(described["axes"][1]["values"], nlohmann::json({-0.002, 0.0, 0.002}));
+
+  std::vector<char> bytes = ReadBytes(table);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 1);
+  const fs::path damaged = dir / "damaged.h5";
+  WriteBytes(damaged, bytes);
+  const std::vector<std::pair<fs::path, std::string>> refused = {
+      {damaged, "damaged"}, {dir / "missing.h5", "no such file"}, {flat, "is also an input"}};
+  for (const auto& [input, problem] : refused) {
+    const fs::path output = input == flat ? flat : dir / "out.wrct";
+    const CommandResult result = Export(input, output);
+    EXPECT_EQ(result.exit_code, 2) << input;
+    EXPECT_NE(result.err.find(problem), std::string::npos) << result.err;
+    if (input != flat) {
+      EXPECT_FALSE(fs::exists(output)) << input;
+    }
+  }
+  EXPECT_EQ(Values(flat), Values(table));  // the refused export left it as it was
+  int leftovers = 0;
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    leftovers += entry.path().filename().string().rfind(".table", 0) == 0 ||
+                 entry.path().filename().string().rfind(".out", 0) == 0;
+  }
+  EXPECT_EQ(leftovers, 0);
+}
+
 }  // namespace
 }  // namespace wrc::test

@@ -11,6 +11,11 @@
 #   MODE=pkgconfig compiles consumer/sim.c with the C compiler CC as a plain build would,
 #                  `CC sim.c $(pkg-config --cflags --libs wrc-runtime)` with PKG_CONFIG_PATH in
 #                  PREFIX, in WORK_DIR, runs it on TABLE and checks that it links the shared runtime.
+#   MODE=nohdf5    builds the runtime alone from PROJECT_DIR with WRC_RUNTIME_HDF5=OFF in WORK_DIR,
+#                  installs it and checks that neither its library nor its package names HDF5;
+#                  exports TABLE flat with WRC; builds digest/ against it (static, no HDF5 on the
+#                  link line) and against the HDF5 runtime in PACKAGE_DIR: the digests of 10^6
+#                  lookups of the flat table (HDF5-free runtime) and of TABLE (HDF5 runtime) agree.
 #   MODE=python    installs the python component into PYTHON_PREFIX (emptied first) and has PYTHON
 #                  import the installed module from there and check the same value.
 cmake_minimum_required(VERSION 3.22)
@@ -146,6 +151,75 @@ function(build_with_pkg_config)
   check_linkage(${WORK_DIR}/sim_c)
 endfunction()
 
+# The digest line table_digest prints for `table` (built in `dir` against `package`, `variant`).
+function(table_digest dir package variant table out_var)
+  if(NOT EXISTS ${dir}/table_digest)
+    set(static OFF)
+    if(variant STREQUAL "static")
+      set(static ON)
+    endif()
+    run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/digest -B ${dir} -G ${GENERATOR}
+        -DCMAKE_PREFIX_PATH=${package} -DWRC_RUNTIME_STATIC=${static} -DCMAKE_BUILD_TYPE=Release)
+    run(${CMAKE_COMMAND} --build ${dir})
+  endif()
+  run(${dir}/table_digest ${table})
+  string(REGEX MATCH "digest [0-9a-f]+ over [0-9]+ points" digest "${run_output}")
+  if(NOT digest)
+    message(FATAL_ERROR "table_digest printed no digest: ${run_output}")
+  endif()
+  set(${out_var} "${digest}" PARENT_SCOPE)
+endfunction()
+
+# Nothing installed may name HDF5: not the library's NEEDED entries, not the package files.
+function(check_no_hdf5 prefix)
+  file(GLOB_RECURSE shared ${prefix}/libwrc_runtime.so.*.*.*)
+  run(${OBJDUMP} -p ${shared})
+  if(run_output MATCHES "NEEDED +[^\n]*hdf5")
+    message(FATAL_ERROR "${shared} needs HDF5:\n${run_output}")
+  endif()
+  file(GLOB_RECURSE package_files ${prefix}/*.cmake ${prefix}/*.pc)
+  foreach(file IN LISTS package_files)
+    file(STRINGS ${file} lines REGEX "^[^#]*[Hh][Dd][Ff]5")  # outside comments
+    if(lines)
+      message(FATAL_ERROR "${file} names HDF5: ${lines}")
+    endif()
+  endforeach()
+endfunction()
+
+function(build_without_hdf5)
+  file(REMOVE_RECURSE ${WORK_DIR})
+  set(build ${WORK_DIR}/build)
+  set(prefix ${WORK_DIR}/prefix)
+  run(${CMAKE_COMMAND} -S ${PROJECT_DIR} -B ${build} -G ${GENERATOR} -DWRC_RUNTIME_HDF5=OFF
+      -DWRC_WERROR=ON -DCMAKE_BUILD_TYPE=Release)
+  run(${CMAKE_COMMAND} --build ${build} --parallel 2)
+  run(${CMAKE_COMMAND} --install ${build} --component runtime --prefix ${prefix})
+  check_no_hdf5(${prefix})
+  set(flat ${WORK_DIR}/table.wrct)
+  run(${WRC} export ${TABLE} -o ${flat})
+  table_digest(${WORK_DIR}/flat_runtime ${prefix} static ${flat} flat_digest)
+  file(GLOB_RECURSE link_lines ${WORK_DIR}/flat_runtime/*link.txt)
+  foreach(file IN LISTS link_lines)
+    file(READ ${file} text)
+    if(text MATCHES "libhdf5|/hdf5/")
+      message(FATAL_ERROR "the consumer's link line names HDF5: ${text}")
+    endif()
+  endforeach()
+  table_digest(${WORK_DIR}/hdf5_runtime ${PACKAGE_DIR} shared ${TABLE} hdf5_digest)
+  table_digest(${WORK_DIR}/hdf5_runtime ${PACKAGE_DIR} shared ${flat} hdf5_flat_digest)
+  if(NOT flat_digest STREQUAL hdf5_digest OR NOT hdf5_flat_digest STREQUAL hdf5_digest)
+    message(FATAL_ERROR "lookups differ: HDF5 runtime on the HDF5 table: ${hdf5_digest}; on the "
+                        "flat table: ${hdf5_flat_digest}; HDF5-free runtime: ${flat_digest}")
+  endif()
+  # The HDF5-free runtime refuses an HDF5 table, saying how to convert it.
+  execute_process(COMMAND ${WORK_DIR}/flat_runtime/table_digest ${TABLE} 1
+                  RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET)
+  if(code EQUAL 0 OR NOT err MATCHES "wrc export")
+    message(FATAL_ERROR "the HDF5-free runtime read ${TABLE} (exit ${code}): ${err}")
+  endif()
+  message(STATUS "HDF5 runtime and HDF5-free runtime: ${flat_digest}")
+endfunction()
+
 if(MODE STREQUAL "install")
   install_runtime()
 elseif(MODE STREQUAL "consumer")
@@ -156,6 +230,9 @@ elseif(MODE STREQUAL "pkgconfig")
   build_with_pkg_config()
 elseif(MODE STREQUAL "python")
   install_python()
+elseif(MODE STREQUAL "nohdf5")
+  build_without_hdf5()
 else()
-  message(FATAL_ERROR "MODE must be install, consumer, example, pkgconfig or python, not '${MODE}'")
+  message(FATAL_ERROR
+          "MODE must be install, consumer, example, pkgconfig, nohdf5 or python, not '${MODE}'")
 endif()

@@ -74,6 +74,10 @@ void AddInfoCommand(CLI::App& app, int* exit_code);
 /// Registers `wrc upgrade OLD.h5 -o NEW.h5`: a table from before seals, checksummed and sealed.
 void AddUpgradeCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc export TABLE.h5 -o TABLE.wrct`: the table as a flat file for a runtime built
+/// without HDF5 (runtime/format/flat_table.h).
+void AddExportCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "runtime/format/flat_table.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/generator/generator.h"
@@ -32,6 +34,50 @@ std::string Attribute(const TableInfo& info, const std::string& name) {
 }
 
 nlohmann::json Refinement(const std::string& path, const TableInfo& info);
+
+// The value of TableInfo::format for a flat table (the `format` attribute inside is the HDF5
+// table's, kept as exported).
+constexpr const char* kFlatFormat = "wrc-flat-table";
+
+bool IsFlatFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string leading(format::kFlatMagic.size(), '\0');
+  in.read(leading.data(), static_cast<std::streamsize>(leading.size()));
+  return in && format::IsFlatTable(leading);
+}
+
+// What `wrc info` shows of a flat table: all but the solve times, the failures' messages and
+// the profiles, which stay in the HDF5 table it was exported from.
+TableInfo InfoOfFlat(const format::TableContent& content) {
+  TableInfo info;
+  info.format = kFlatFormat;
+  info.format_version = format::kFlatVersion;
+  info.sealed = true;
+  for (const auto& [name, value] : content.attributes) info.attributes.emplace_back(name, value);
+  for (const format::AxisContent& axis : content.axes) {
+    info.axes.push_back({axis.name, axis.unit, axis.values});
+  }
+  info.points = content.num_nodes();
+  const std::size_t n_out = content.outputs.size();
+  for (std::size_t k = 0; k < n_out; ++k) {
+    TableInfo::Output output{content.outputs[k].name, content.outputs[k].unit};
+    for (std::size_t node = 0; node < info.points; ++node) {
+      if (content.status[node] != 0) continue;
+      const double v = content.values[node * n_out + k];
+      output.min = std::isnan(output.min) ? v : std::min(output.min, v);
+      output.max = std::isnan(output.max) ? v : std::max(output.max, v);
+    }
+    info.outputs.push_back(output);
+  }
+  for (const std::int8_t status : content.status) {
+    if (status >= 0 && status < kPointStatusCount) {
+      ++info.status_counts[status];
+    } else {
+      ++info.other_status;
+    }
+  }
+  return info;
+}
 
 // Texts from the file (attributes, messages) need not be UTF-8: shown with U+FFFD in their place
 // rather than ending the output with the JSON library's exception.
@@ -168,18 +214,28 @@ void PrintRefinement(const std::string& path, const TableInfo& info) {
 void PrintHuman(const std::string& path, const TableInfo& info) {
   std::cout << path << ": " << info.format << " version " << info.format_version << ", "
             << info.points << " points\n";
-  std::cout << (info.sealed ? "  seal                  intact (a SHA-256 of every byte, checked "
-                              "before HDF5 reads the file)\n"
-                            : "  seal                  none: written before seals, so damage is "
-                              "only found as HDF5 reads it; seal it with `wrc upgrade`\n");
+  const bool flat = info.format == kFlatFormat;
+  if (flat) {
+    std::cout << "  digest                intact (a SHA-256 of every byte after the header)\n"
+                 "  a flat table (wrc export): solve times, failure messages and profiles are "
+                 "in the HDF5 table it came from\n";
+  } else {
+    std::cout << (info.sealed ? "  seal                  intact (a SHA-256 of every byte, checked "
+                                "before HDF5 reads the file)\n"
+                              : "  seal                  none: written before seals, so damage is "
+                                "only found as HDF5 reads it; seal it with `wrc upgrade`\n");
+  }
   for (const char* name :
        {"wrc_version", "created", "rail_profile_sha256", "wheel_profile_sha256", "z_warm_start"}) {
     const std::string value = Attribute(info, name);
     if (!value.empty()) std::cout << "  " << std::left << std::setw(22) << name << value << '\n';
   }
-  std::cout << "  profiles: rail " << info.rail_profile_name << " (" << info.rail_profile_bytes
-            << " bytes), wheel " << info.wheel_profile_name << " (" << info.wheel_profile_bytes
-            << " bytes)\naxes:\n";
+  if (!flat) {
+    std::cout << "  profiles: rail " << info.rail_profile_name << " (" << info.rail_profile_bytes
+              << " bytes), wheel " << info.wheel_profile_name << " (" << info.wheel_profile_bytes
+              << " bytes)\n";
+  }
+  std::cout << "axes:\n";
   for (const TableInfo::Axis& axis : info.axes) {
     std::cout << "  " << std::left << std::setw(14) << axis.name << std::right << std::setw(6)
               << axis.values.size() << " values  " << axis.values.front() << " to "
@@ -207,9 +263,12 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
   }
   if (info.other_status > 0) std::cout << " invalid " << info.other_status;
   if (info.warnings_count >= 0) std::cout << "; with warnings " << info.warnings_count;
-  std::cout << "\nsolve time: total " << info.solve_time_total_s << " s, mean "
-            << (info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0)
-            << " s, max " << info.solve_time_max_s << " s\n";
+  std::cout << '\n';
+  if (!flat) {
+    std::cout << "solve time: total " << info.solve_time_total_s << " s, mean "
+              << (info.points ? info.solve_time_total_s / static_cast<double>(info.points) : 0.0)
+              << " s, max " << info.solve_time_max_s << " s\n";
+  }
   if (!info.failures.empty()) {
     std::cout << "failed points:\n";
     for (const TableInfo::Failure& failure : info.failures) {
@@ -231,14 +290,16 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       app.add_subcommand("info", "Show what a table holds: axes, outputs, status, provenance");
   auto path = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
-  cmd->add_option("TABLE", *path, "Table file (HDF5, written by wrc generate)")->required();
+  cmd->add_option("TABLE", *path, "Table file (HDF5 from wrc generate, or flat from wrc export)")
+      ->required();
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->callback([=]() {
     try {
       // The runtime's validation first (types, shapes, axes, values, format version): what
       // info reads afterwards has passed every check a simulator's open makes.
       const Table validated(*path);
-      const TableInfo info = ReadTableInfo(*path);
+      const TableInfo info =
+          IsFlatFile(*path) ? InfoOfFlat(format::ReadTableContent(*path)) : ReadTableInfo(*path);
       if (*as_json) {
         std::cout << InfoJson(*path, info).dump(1, ' ', false, kReplaceInvalidUtf8) << '\n';
       } else {
