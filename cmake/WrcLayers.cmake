@@ -47,6 +47,7 @@ wrc_layer(core_public DIRS wrc/core)
 # The scene parser checks axes against the runtime's limits (wrc/runtime.h, plain C constants).
 wrc_layer(core DIRS core wrc/core HEADERS wrc/runtime.h)
 wrc_layer(generator_public DIRS wrc/generator)
-# The generator measures a refinement with the runtime's cubic line arithmetic.
-wrc_layer(generator DIRS generator runtime/interp)
+# The generator measures a refinement with the runtime's cubic line arithmetic, and writes its
+# journal with the table formats' little-endian fields (header-only, both).
+wrc_layer(generator DIRS generator runtime/interp runtime/format)
 wrc_layer(tools DIRS tools)

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "runtime/format/little_endian.h"
 #include "wrc/core/errors.h"
 
 namespace wrc::gen {
@@ -41,23 +42,10 @@ constexpr std::array<std::uint32_t, 256> MakeCrcTable() {
 }
 constexpr std::array<std::uint32_t, 256> kCrcTable = MakeCrcTable();
 
-// Little-endian encoding, independent of the machine's byte order.
-void PutU32(std::string& out, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-void PutU64(std::string& out, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-void PutF64(std::string& out, double v) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &v, sizeof bits);
-  PutU64(out, bits);
-}
-void PutF32(std::string& out, float v) {
-  std::uint32_t bits = 0;
-  std::memcpy(&bits, &v, sizeof bits);
-  PutU32(out, bits);
-}
+using le::PutF32;
+using le::PutF64;
+using le::PutU32;
+using le::PutU64;
 
 // Reads little-endian fields from a byte range; every read is bounds-checked by the caller.
 class Reader {
@@ -66,27 +54,14 @@ class Reader {
   std::size_t offset() const { return offset_; }
   std::size_t remaining() const { return bytes_.size() - offset_; }
   std::uint64_t U(int n) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < n; ++i) {
-      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes_[offset_ + i])) << (8 * i);
-    }
+    const std::uint64_t v = le::LoadUnsigned(bytes_.data() + offset_, n);
     offset_ += static_cast<std::size_t>(n);
     return v;
   }
   std::uint32_t U32() { return static_cast<std::uint32_t>(U(4)); }
   std::uint64_t U64() { return U(8); }
-  double F64() {
-    const std::uint64_t bits = U64();
-    double v = 0.0;
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-  }
-  float F32() {
-    const std::uint32_t bits = U32();
-    float v = 0.0f;
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-  }
+  double F64() { return le::LoadF64(Take(8).data()); }
+  float F32() { return le::LoadF32(Take(4).data()); }
   std::string_view Take(std::size_t n) {
     const std::string_view part = bytes_.substr(offset_, n);
     offset_ += n;

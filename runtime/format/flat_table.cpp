@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "runtime/format/little_endian.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::format {
@@ -29,19 +30,10 @@ constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 40;
 
 // ---- writing ----------------------------------------------------------------------------------
 
-void PutU32(std::string& out, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-
-void PutU64(std::string& out, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-
-void PutF64(std::string& out, double v) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &v, sizeof bits);
-  PutU64(out, bits);
-}
+using le::LoadUnsigned;
+using le::PutF64;
+using le::PutU32;
+using le::PutU64;
 
 void PutString(std::string& out, const std::string& text) {
   PutU32(out, static_cast<std::uint32_t>(text.size()));
@@ -59,12 +51,6 @@ std::array<std::uint8_t, SHA256_DIGEST_SIZE> Digest(std::string_view bytes) {
 
 // ---- reading ----------------------------------------------------------------------------------
 
-std::uint64_t LoadU64(const char* p, int bytes) {
-  std::uint64_t v = 0;
-  for (int i = 0; i < bytes; ++i) v |= std::uint64_t{static_cast<std::uint8_t>(p[i])} << (8 * i);
-  return v;
-}
-
 // The body, read front to back: every read checks that the bytes are there, and names what it
 // was reading when they are not.
 class Cursor {
@@ -76,9 +62,9 @@ class Cursor {
   std::size_t offset() const { return at_; }
 
   std::uint32_t U32(const std::string& what) {
-    return static_cast<std::uint32_t>(LoadU64(Take(4, what), 4));
+    return static_cast<std::uint32_t>(LoadUnsigned(Take(4, what), 4));
   }
-  std::uint64_t U64(const std::string& what) { return LoadU64(Take(8, what), 8); }
+  std::uint64_t U64(const std::string& what) { return LoadUnsigned(Take(8, what), 8); }
 
   std::string String(std::uint64_t max_bytes, const std::string& what) {
     const std::uint32_t size = U32(what + "'s length");
@@ -95,8 +81,7 @@ class Cursor {
     out.reserve(count + kValuePadding);
     out.resize(count);
     for (std::uint64_t i = 0; i < count; ++i) {
-      const std::uint64_t bits = LoadU64(p + 8 * i, 8);
-      std::memcpy(&out[i], &bits, sizeof bits);
+      out[i] = le::LoadF64(p + 8 * i);
     }
   }
 
@@ -130,14 +115,14 @@ void CheckHeader(std::string_view bytes, const std::string& where, bool check_di
                        "-byte header, the file has " + std::to_string(bytes.size()) + " bytes");
   }
   if (!IsFlatTable(bytes)) Invalid(where, "not a flat table (its first 8 bytes are not the magic)");
-  const std::uint64_t version = LoadU64(bytes.data() + 8, 4);
+  const std::uint64_t version = LoadUnsigned(bytes.data() + 8, 4);
   if (version != kFlatVersion) {
     Invalid(where, "flat table version " + std::to_string(version) +
                        ", this runtime reads version " + std::to_string(kFlatVersion));
   }
-  if (LoadU64(bytes.data() + 12, 4) != 0)
+  if (LoadUnsigned(bytes.data() + 12, 4) != 0)
     Invalid(where, "header flags set that no version defines");
-  const std::uint64_t size = LoadU64(bytes.data() + 16, 8);
+  const std::uint64_t size = LoadUnsigned(bytes.data() + 16, 8);
   if (size != bytes.size()) {
     Invalid(where, "damaged: the header gives a size of " + std::to_string(size) +
                        " bytes, the file has " + std::to_string(bytes.size()) +
@@ -149,7 +134,8 @@ void CheckHeader(std::string_view bytes, const std::string& where, bool check_di
       Invalid(where, "damaged: its bytes do not match their SHA-256 (a changed byte)");
     }
   }
-  if (LoadU64(bytes.data() + kFlatDigestEnd, 8) != 0) Invalid(where, "reserved header bytes set");
+  if (LoadUnsigned(bytes.data() + kFlatDigestEnd, 8) != 0)
+    Invalid(where, "reserved header bytes set");
 }
 
 void DecodeAttributes(Cursor& in, std::uint32_t count, TableContent& content,
