@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "runtime/format/little_endian.h"
@@ -198,6 +199,13 @@ void DecodeNodes(Cursor& in, TableContent& content, const std::string& where) {
 bool IsFlatTable(std::string_view leading) {
   return leading.size() >= kFlatMagic.size() &&
          std::memcmp(leading.data(), kFlatMagic.data(), kFlatMagic.size()) == 0;
+}
+
+bool IsFlatTableFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, kFlatMagic.size()> leading{};
+  in.read(leading.data(), leading.size());
+  return in && IsFlatTable(std::string_view(leading.data(), leading.size()));
 }
 
 std::string EncodeFlatTable(const TableContent& content) {

@@ -46,6 +46,9 @@ inline constexpr std::size_t kFlatDigestEnd = 56;
 /// Whether `leading` (a file's first bytes) starts with the flat table's magic.
 bool IsFlatTable(std::string_view leading);
 
+/// Whether the file at `path` starts with the magic (false when it cannot be read).
+bool IsFlatTableFile(const std::string& path);
+
 /// The flat file of `content` (already checked: the exporter reads it with ReadTableContent).
 std::string EncodeFlatTable(const TableContent& content);
 

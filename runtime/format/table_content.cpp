@@ -23,14 +23,10 @@ namespace {
 
 constexpr auto kOkStatus = static_cast<std::int8_t>(schema::StoredStatus::kOk);
 
-// The first bytes of the file (fewer when it is shorter).
-std::string Leading(const std::string& path, std::size_t count) {
+// Throws when the file cannot be opened for reading.
+void RequireReadable(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw TableError(WRC_ERR_FILE, path + ": cannot open: " + std::strerror(errno));
-  std::string bytes(count, '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(count));
-  bytes.resize(static_cast<std::size_t>(in.gcount()));
-  return bytes;
 }
 
 void CheckNames(const std::vector<std::string>& names, const char* what, const std::string& where) {
@@ -170,7 +166,8 @@ TableContent ReadTableContent(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ignored)) {
     throw TableError(WRC_ERR_FILE, path + ": not a regular file");
   }
-  if (IsFlatTable(Leading(path, kFlatMagic.size()))) return ReadFlatTable(path);
+  RequireReadable(path);  // a file that cannot be opened says why, whichever reader it was for
+  if (IsFlatTableFile(path)) return ReadFlatTable(path);
 #ifdef WRC_RUNTIME_HDF5
   return ReadHdf5Content(path);
 #else

@@ -521,6 +521,12 @@ TEST(CliExport, WritesTheSameNumbersAndRefusesWhatTheRuntimeRefuses) {
   EXPECT_EQ(described["points"], 15);
   EXPECT_EQ(described["status"]["ok"], 15);
   EXPECT_EQ(described["axes"][1]["values"], nlohmann::json({-0.002, 0.0, 0.002}));
+  // verify solves with the stored profiles, which a flat table leaves in the HDF5 table.
+  const CommandResult verify =
+      RunCommand(Quoted(WrcBinary()) + " verify --samples 2 " + Quoted(flat.string()), dir.path());
+  EXPECT_EQ(verify.exit_code, 2);
+  EXPECT_NE(verify.err.find("a flat table (wrc export) holds neither"), std::string::npos)
+      << verify.err;
 
   std::vector<char> bytes = ReadBytes(table);
   bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 1);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -38,13 +37,6 @@ nlohmann::json Refinement(const std::string& path, const TableInfo& info);
 // The value of TableInfo::format for a flat table (the `format` attribute inside is the HDF5
 // table's, kept as exported).
 constexpr const char* kFlatFormat = "wrc-flat-table";
-
-bool IsFlatFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string leading(format::kFlatMagic.size(), '\0');
-  in.read(leading.data(), static_cast<std::streamsize>(leading.size()));
-  return in && format::IsFlatTable(leading);
-}
 
 // What `wrc info` shows of a flat table: all but the solve times, the failures' messages and
 // the profiles, which stay in the HDF5 table it was exported from.
@@ -298,8 +290,9 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       // The runtime's validation first (types, shapes, axes, values, format version): what
       // info reads afterwards has passed every check a simulator's open makes.
       const Table validated(*path);
-      const TableInfo info =
-          IsFlatFile(*path) ? InfoOfFlat(format::ReadTableContent(*path)) : ReadTableInfo(*path);
+      const TableInfo info = format::IsFlatTableFile(*path)
+                                 ? InfoOfFlat(format::ReadTableContent(*path))
+                                 : ReadTableInfo(*path);
       if (*as_json) {
         std::cout << InfoJson(*path, info).dump(1, ' ', false, kReplaceInvalidUtf8) << '\n';
       } else {

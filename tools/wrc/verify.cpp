@@ -15,6 +15,7 @@
 #include <thread>
 #include <utility>
 
+#include "runtime/format/flat_table.h"
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
@@ -294,6 +295,11 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
   const Table validated(table.string());  // the runtime's checks, before any other read
   if (const std::string warning = validated.warning(); !warning.empty()) {
     std::cerr << "wrc verify: warning: " << warning << '\n';
+  }
+  if (format::IsFlatTableFile(table.string())) {
+    throw InputError(table.string() +
+                     ": a flat table (wrc export) holds neither the scene's profiles nor its "
+                     "failures: use the HDF5 table it was exported from");
   }
   auto stored = std::make_unique<StoredScene>();
   const h5::File file = h5::File::Open(table.string());
