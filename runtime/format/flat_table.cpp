@@ -159,6 +159,7 @@ void DecodeAxes(Cursor& in, std::uint32_t count, TableContent& content) {
     axis.name = in.String(kMaxNameBytes, what + "'s name");
     axis.unit = in.String(kMaxNameBytes, what + "'s unit");
     const std::uint64_t nodes = in.U64(what + "'s node count");
+    if (nodes == 0) Invalid(content.path + ":/axes/" + axis.name, "is empty");
     if (nodes > kMaxAxisNodes) {
       Invalid(content.path + ":/axes/" + axis.name,
               "has " + std::to_string(nodes) + " nodes, more than the " +

@@ -121,6 +121,7 @@ std::uint64_t CountNodes(const std::vector<std::uint64_t>& shape, const std::str
   std::string lengths;
   for (const std::uint64_t length : shape) {
     lengths += (lengths.empty() ? "" : ",") + std::to_string(length);
+    if (length == 0) Invalid(where, "axes of lengths [" + lengths + "]: an axis without nodes");
     if (length > kMaxTableNodes / nodes) {
       Invalid(where, "axes of lengths [" + lengths + "] (and any after them) make more than " +
                          std::to_string(kMaxTableNodes) + " nodes");
