@@ -4,8 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <nettle/sha2.h>
-
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -17,6 +15,7 @@
 
 #include "runtime/format/flat_table.h"
 #include "tests/runtime/table_writer.h"
+#include "tests/support/flat_table.h"
 #include "wrc/runtime.h"
 #include "wrc/runtime.hpp"
 
@@ -59,18 +58,6 @@ std::string ReadBytes(const std::string& path) {
 
 void WriteBytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-}
-
-// The bytes with their header's size and digest made to match again: damage past the digest,
-// to reach the parser.
-std::string Resealed(std::string bytes) {
-  const std::uint64_t size = bytes.size();
-  for (int i = 0; i < 8; ++i) bytes[16 + i] = static_cast<char>((size >> (8 * i)) & 0xFF);
-  sha256_ctx context;
-  sha256_init(&context);
-  sha256_update(&context, bytes.size() - 56, reinterpret_cast<const std::uint8_t*>(&bytes[56]));
-  sha256_digest(&context, 32, reinterpret_cast<std::uint8_t*>(&bytes[24]));
-  return bytes;
 }
 
 struct Pair {
@@ -195,18 +182,22 @@ TEST(RuntimeFlat, MalformedBodiesAreRefusedByName) {
   };
   std::string forged = bytes;
   forged[64 + 4] = 9;  // axis count 9: beyond WRC_MAX_AXES
-  EXPECT_NE(decode_error(Resealed(forged)).find("9 axes"), std::string::npos);
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged)).find("9 axes"), std::string::npos);
   forged = bytes;
   forged[64 + 11] = static_cast<char>(0xFF);  // output count 0xFF00000B: more than the bytes
-  EXPECT_NE(decode_error(Resealed(forged)).find("truncated"), std::string::npos);
-  EXPECT_NE(decode_error(Resealed(bytes + "x")).find("bytes follow the status"), std::string::npos);
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged)).find("truncated"),
+            std::string::npos);
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(bytes + "x")).find("bytes follow the status"),
+            std::string::npos);
   forged = bytes;
   forged[8] = 2;  // version 2
-  EXPECT_NE(decode_error(Resealed(forged)).find("version 2, this runtime reads version 1"),
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged))
+                .find("version 2, this runtime reads version 1"),
             std::string::npos);
   forged = bytes;
   forged[64 + 12] = 1;  // the reserved count
-  EXPECT_NE(decode_error(Resealed(forged)).find("must be 0"), std::string::npos);
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged)).find("must be 0"),
+            std::string::npos);
 
   // Content the checks refuse, whichever format holds it.
   wrc::format::TableContent content = ReadTableContent(files.h5.path());
