@@ -198,10 +198,15 @@ TEST(CliDamagedTable, RefinementAttributesThatAreNotItsJson) {
 
 // ---- tables written before seals, and `wrc upgrade` ------------------------------------------
 
+// `wrc COMMAND TABLE -o OUTPUT` (upgrade, export), run beside the table.
+CommandResult RewriteTable(const char* command, const fs::path& table, const fs::path& output) {
+  return RunCommand(Quoted(WrcBinary()) + " " + command + " " + Quoted(table.string()) + " -o " +
+                        Quoted(output.string()),
+                    table.parent_path());
+}
+
 CommandResult Upgrade(const fs::path& table, const fs::path& output) {
-  return RunCommand(
-      Quoted(WrcBinary()) + " upgrade " + Quoted(table.string()) + " -o " + Quoted(output.string()),
-      table.parent_path());
+  return RewriteTable("upgrade", table, output);
 }
 
 std::vector<char> ReadBytes(const fs::path& path) {
@@ -494,9 +499,7 @@ TEST(CliStoredProfile, AnUnreadableProfileIsNamedAsTheTables) {
 // ---- `wrc export` -------------------------------------------------------------------------------
 
 CommandResult Export(const fs::path& table, const fs::path& output) {
-  return RunCommand(
-      Quoted(WrcBinary()) + " export " + Quoted(table.string()) + " -o " + Quoted(output.string()),
-      table.parent_path());
+  return RewriteTable("export", table, output);
 }
 
 // The flat table holds the same numbers; a damaged table, a missing one or an output that is
