@@ -50,4 +50,6 @@ wrc_layer(generator_public DIRS wrc/generator)
 # The generator measures a refinement with the runtime's cubic line arithmetic, and writes its
 # journal with the table formats' little-endian fields (header-only, both).
 wrc_layer(generator DIRS generator runtime/interp runtime/format)
+# The wheelset FMU: the runtime's C API below it.
+wrc_layer(fmu DIRS fmu HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(tools DIRS tools)

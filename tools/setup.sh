@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make pkg-config libeigen3-dev libfftw3-dev libhdf5-dev libgsl-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libtomlplusplus-dev
-  clang-format python3 python3-numpy python3-pybind11 python3-venv python3-pip python3-setuptools pybind11-dev gnuplot-nox nettle-dev openmpi-bin libopenmpi-dev clang libclang-rt-14-dev)
+  clang-format python3 python3-numpy python3-pybind11 python3-venv python3-pip python3-setuptools pybind11-dev gnuplot-nox nettle-dev libzip-dev libxml2-utils openmpi-bin libopenmpi-dev clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -78,6 +78,10 @@ void AddUpgradeCommand(CLI::App& app, int* exit_code);
 /// without HDF5 (runtime/format/flat_table.h).
 void AddExportCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc fmu TABLE.h5 -o wheelset.fmu`: the wheelset FMU (FMI 3.0 co-simulation)
+/// packed with the table (fmu/).
+void AddFmuCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 

@@ -1,0 +1,144 @@
+#include "fmu/model_description.h"
+
+#include <sstream>
+
+#include "fmu/variables.h"
+
+namespace wrc::fmu {
+namespace {
+
+const char* CausalityName(Causality c) {
+  switch (c) {
+    case Causality::kIndependent:
+      return "independent";
+    case Causality::kParameter:
+      return "parameter";
+    case Causality::kInput:
+      return "input";
+    case Causality::kOutput:
+      return "output";
+  }
+  return "";
+}
+
+const char* ElementName(Type t) {
+  switch (t) {
+    case Type::kFloat64:
+      return "Float64";
+    case Type::kInt32:
+      return "Int32";
+    case Type::kString:
+      return "String";
+    case Type::kEnumeration:
+      return "Enumeration";
+  }
+  return "";
+}
+
+// Parameters are fixed (the tables load once); the flags and status are discrete outputs.
+const char* Variability(const Variable& v) {
+  if (v.causality == Causality::kParameter) return "fixed";
+  return v.type == Type::kInt32 ? "discrete" : "continuous";
+}
+
+void WriteUnits(std::ostream& x) {
+  x << "  <UnitDefinitions>\n"
+       "    <Unit name=\"s\"><BaseUnit s=\"1\"/></Unit>\n"
+       "    <Unit name=\"m\"><BaseUnit m=\"1\"/></Unit>\n"
+       "    <Unit name=\"m/s\"><BaseUnit m=\"1\" s=\"-1\"/></Unit>\n"
+       "    <Unit name=\"rad\"><BaseUnit rad=\"1\"/></Unit>\n"
+       "    <Unit name=\"rad/s\"><BaseUnit s=\"-1\" rad=\"1\"/></Unit>\n"
+       "    <Unit name=\"N\"><BaseUnit kg=\"1\" m=\"1\" s=\"-2\"/></Unit>\n"
+       "    <Unit name=\"N.m\"><BaseUnit kg=\"1\" m=\"2\" s=\"-2\"/></Unit>\n"
+       "  </UnitDefinitions>\n"
+       "  <TypeDefinitions>\n"
+       "    <EnumerationType name=\"Interpolation\">\n"
+       "      <Item name=\"linear\" value=\"1\" description=\"multilinear, C0\"/>\n"
+       "      <Item name=\"cubic\" value=\"2\" description=\"cubic Hermite, C1\"/>\n"
+       "    </EnumerationType>\n"
+       "  </TypeDefinitions>\n"
+       "  <LogCategories>\n"
+       "    <Category name=\"logStatusError\" description=\"Refused calls and failed lookups\"/>\n"
+       "    <Category name=\"logStatusWarning\"/>\n"
+       "  </LogCategories>\n";
+}
+
+void WriteVariable(std::ostream& x, const Variable& v, const StartValues& start) {
+  x << "    <" << ElementName(v.type) << " name=\"" << XmlEscape(v.name) << "\" valueReference=\""
+    << v.value_reference << "\" description=\"" << XmlEscape(v.description) << "\" causality=\""
+    << CausalityName(v.causality) << "\" variability=\"" << Variability(v) << '"';
+  if (v.type == Type::kEnumeration) x << " declaredType=\"Interpolation\"";
+  if (*v.unit != '\0') x << " unit=\"" << v.unit << '"';
+  const auto s = start.find(v.value_reference);
+  if (s == start.end() || v.type != Type::kString) {
+    if (s != start.end()) x << " start=\"" << XmlEscape(s->second) << '"';
+    x << "/>\n";
+    return;
+  }
+  x << ">\n      <Start value=\"" << XmlEscape(s->second) << "\"/>\n    </String>\n";
+}
+
+void WriteStructure(std::ostream& x) {
+  x << "  <ModelStructure>\n";
+  for (const Variable& v : Variables()) {
+    if (v.causality == Causality::kOutput) {
+      x << "    <Output valueReference=\"" << v.value_reference << "\"/>\n";
+    }
+  }
+  for (const Variable& v : Variables()) {
+    if (v.causality == Causality::kOutput) {
+      x << "    <InitialUnknown valueReference=\"" << v.value_reference << "\"/>\n";
+    }
+  }
+  x << "  </ModelStructure>\n";
+}
+
+}  // namespace
+
+std::string XmlEscape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        const bool control = static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n';
+        out += control ? ' ' : c;
+    }
+  }
+  return out;
+}
+
+std::string ModelDescriptionXml(const StartValues& start, const ModelDescriptionInfo& info) {
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+    << "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"wrc wheelset\" instantiationToken=\""
+    << kInstantiationToken << "\" description=\"" << XmlEscape(info.description)
+    << "\" generationTool=\"" << XmlEscape(info.generation_tool) << "\" generationDateAndTime=\""
+    << info.generated_at << "\" variableNamingConvention=\"structured\">\n"
+    << "  <CoSimulation modelIdentifier=\"" << kModelIdentifier
+    << "\" canHandleVariableCommunicationStepSize=\"true\"/>\n";
+  WriteUnits(x);
+  x << "  <DefaultExperiment startTime=\"0\" stopTime=\"2\" stepSize=\"0.001\"/>\n"
+    << "  <ModelVariables>\n";
+  for (const Variable& v : Variables()) WriteVariable(x, v, start);
+  x << "  </ModelVariables>\n";
+  WriteStructure(x);
+  x << "</fmiModelDescription>\n";
+  return x.str();
+}
+
+}  // namespace wrc::fmu
