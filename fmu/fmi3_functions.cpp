@@ -9,6 +9,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <utility>
 
 #include "fmu/fmi3_types.h"
 #include "fmu/instance.h"
@@ -109,7 +110,13 @@ WRC_FMI3 void* fmi3InstantiateCoSimulation(String name, String token, String res
   if (resources == nullptr || resources[0] == '\0') return refuse("no resource path");
   if (event_mode_used) return refuse("the FMU has no event mode");
   try {
-    return new Instance(name != nullptr ? name : "", resources, logging_on, logger, environment);
+    wrc::fmu::LogSink sink;
+    if (logger != nullptr) {
+      sink = [logger, environment](Status status, const char* category, const char* message) {
+        logger(environment, status, category, message);
+      };
+    }
+    return new Instance(name != nullptr ? name : "", resources, logging_on, std::move(sink));
   } catch (const std::exception& e) {
     return refuse(e.what());
   }

@@ -37,13 +37,11 @@ const char* TypeName(Type type) {
 
 }  // namespace
 
-Instance::Instance(std::string name, std::string resource_path, bool logging,
-                   fmi3::LogMessageCallback logger, fmi3::InstanceEnvironment environment)
+Instance::Instance(std::string name, std::string resource_path, bool logging, LogSink log)
     : name_(std::move(name)),
       resources_(std::move(resource_path)),
       logging_(logging),
-      logger_(logger),
-      environment_(environment),
+      log_(std::move(log)),
       start_(kNumVariables),
       real_(kNumVariables, NAN),
       int_(kNumVariables, 0) {
@@ -81,9 +79,9 @@ void Instance::ApplyStartValues() {
 }
 
 void Instance::Log(fmi3::Status status, const std::string& message) const {
-  if (logger_ == nullptr || (!logging_ && status < fmi3::kError)) return;
+  if (!log_ || (!logging_ && status < fmi3::kError)) return;
   const char* category = status >= fmi3::kError ? "logStatusError" : "logStatusWarning";
-  logger_(environment_, status, category, (name_ + ": " + message).c_str());
+  log_(status, category, (name_ + ": " + message).c_str());
 }
 
 fmi3::Status Instance::Refuse(const char* function, const std::string& message) const {
@@ -95,7 +93,7 @@ fmi3::Status Instance::Refuse(const char* function, const std::string& message) 
 
 fmi3::Status Instance::EnterInitialization() {
   if (mode_ != Mode::kInstantiated)
-    return Refuse("fmi3EnterInitializationMode", "not instantiated");
+    return Refuse("entering initialization mode", "not instantiated");
   mode_ = Mode::kInitialization;
   return fmi3::kOK;
 }
@@ -104,7 +102,7 @@ fmi3::Status Instance::EnterInitialization() {
 // mode): the parameters that name them are fixed from now on.
 fmi3::Status Instance::ExitInitialization() {
   if (mode_ != Mode::kInitialization) {
-    return Refuse("fmi3ExitInitializationMode", "not in initialization mode");
+    return Refuse("exiting initialization mode", "not in initialization mode");
   }
   const fmi3::Status status = Evaluate();
   if (status >= fmi3::kError) return status;
@@ -113,9 +111,9 @@ fmi3::Status Instance::ExitInitialization() {
 }
 
 fmi3::Status Instance::DoStep(double time, double step) {
-  if (mode_ != Mode::kStep) return Refuse("fmi3DoStep", "not in step mode");
+  if (mode_ != Mode::kStep) return Refuse("doing a step", "not in step mode");
   if (!(step > 0.0) || !std::isfinite(time)) {
-    return Refuse("fmi3DoStep", "the communication step must be > 0 from a finite time");
+    return Refuse("doing a step", "the communication step must be > 0 from a finite time");
   }
   real_[kTime] = time + step;
   return Evaluate();
@@ -123,7 +121,7 @@ fmi3::Status Instance::DoStep(double time, double step) {
 
 fmi3::Status Instance::Terminate() {
   if (mode_ != Mode::kStep && mode_ != Mode::kInitialization) {
-    return Refuse("fmi3Terminate", "neither in initialization nor in step mode");
+    return Refuse("terminating", "neither in initialization nor in step mode");
   }
   mode_ = Mode::kTerminated;
   return fmi3::kOK;
@@ -155,7 +153,7 @@ fmi3::Status Instance::CheckAccess(const char* function, fmi3::ValueReference vr
   }
   switch (v.causality) {
     case Causality::kIndependent:
-      return Refuse(function, "time advances with fmi3DoStep");
+      return Refuse(function, "time advances with the steps");
     case Causality::kOutput:
       return Refuse(function, v.name + " is an output");
     case Causality::kParameter:
@@ -174,7 +172,7 @@ fmi3::Status Instance::CheckAccess(const char* function, fmi3::ValueReference vr
 
 // An output is written also when its lookup failed: NaN then, and status says why.
 fmi3::Status Instance::GetFloat64(fmi3::ValueReference vr, double* value) {
-  fmi3::Status status = CheckAccess("fmi3GetFloat64", vr, static_cast<int>(Type::kFloat64), false);
+  fmi3::Status status = CheckAccess("get", vr, static_cast<int>(Type::kFloat64), false);
   if (status != fmi3::kOK) return status;
   if (Variables()[vr].causality == Causality::kOutput) status = Evaluate();
   *value = real_[vr];
@@ -182,14 +180,13 @@ fmi3::Status Instance::GetFloat64(fmi3::ValueReference vr, double* value) {
 }
 
 fmi3::Status Instance::SetFloat64(fmi3::ValueReference vr, double value) {
-  const fmi3::Status status =
-      CheckAccess("fmi3SetFloat64", vr, static_cast<int>(Type::kFloat64), true);
+  const fmi3::Status status = CheckAccess("set", vr, static_cast<int>(Type::kFloat64), true);
   if (status == fmi3::kOK) real_[vr] = value;
   return status;
 }
 
 fmi3::Status Instance::GetInt32(fmi3::ValueReference vr, std::int32_t* value) {
-  fmi3::Status status = CheckAccess("fmi3GetInt32", vr, static_cast<int>(Type::kInt32), false);
+  fmi3::Status status = CheckAccess("get", vr, static_cast<int>(Type::kInt32), false);
   if (status != fmi3::kOK) return status;
   status = Evaluate();  // the Int32 variables are outputs
   *value = int_[vr];
@@ -197,32 +194,44 @@ fmi3::Status Instance::GetInt32(fmi3::ValueReference vr, std::int32_t* value) {
 }
 
 fmi3::Status Instance::GetInt64(fmi3::ValueReference vr, std::int64_t* value) {
-  const fmi3::Status status =
-      CheckAccess("fmi3GetInt64", vr, static_cast<int>(Type::kEnumeration), false);
+  const fmi3::Status status = CheckAccess("get", vr, static_cast<int>(Type::kEnumeration), false);
   if (status == fmi3::kOK) *value = int_[vr];
   return status;
 }
 
 fmi3::Status Instance::SetInt64(fmi3::ValueReference vr, std::int64_t value) {
-  fmi3::Status status = CheckAccess("fmi3SetInt64", vr, static_cast<int>(Type::kEnumeration), true);
-  if (status == fmi3::kOK && value != WRC_INTERP_LINEAR && value != WRC_INTERP_CUBIC) {
-    status = Refuse("fmi3SetInt64",
+  fmi3::Status status = CheckAccess("set", vr, static_cast<int>(Type::kEnumeration), true);
+  if (status == fmi3::kOK && value != kInterpolationLinear && value != kInterpolationCubic) {
+    status = Refuse("set",
                     "interpolation is 1 (multilinear) or 2 (cubic), not " + std::to_string(value));
   }
   if (status == fmi3::kOK) int_[vr] = static_cast<std::int32_t>(value);
   return status;
 }
 
+fmi3::Status Instance::GetInteger(fmi3::ValueReference vr, std::int32_t* value) {
+  if (vr < kNumVariables && Variables()[vr].type == Type::kEnumeration) {
+    std::int64_t wide = 0;
+    const fmi3::Status status = GetInt64(vr, &wide);
+    *value = static_cast<std::int32_t>(wide);
+    return status;
+  }
+  return GetInt32(vr, value);
+}
+
+fmi3::Status Instance::SetInteger(fmi3::ValueReference vr, std::int32_t value) {
+  return SetInt64(vr, value);  // the enumeration is the only settable integer
+}
+
 fmi3::Status Instance::GetString(fmi3::ValueReference vr, const char** value) {
-  const fmi3::Status status =
-      CheckAccess("fmi3GetString", vr, static_cast<int>(Type::kString), false);
+  const fmi3::Status status = CheckAccess("get", vr, static_cast<int>(Type::kString), false);
   if (status == fmi3::kOK) *value = table_[vr == kRightTable ? 0 : 1].c_str();
   return status;
 }
 
 fmi3::Status Instance::SetString(fmi3::ValueReference vr, const char* value) {
-  fmi3::Status status = CheckAccess("fmi3SetString", vr, static_cast<int>(Type::kString), true);
-  if (status == fmi3::kOK && value == nullptr) status = Refuse("fmi3SetString", "NULL string");
+  fmi3::Status status = CheckAccess("set", vr, static_cast<int>(Type::kString), true);
+  if (status == fmi3::kOK && value == nullptr) status = Refuse("set", "NULL string");
   if (status == fmi3::kOK) table_[vr == kRightTable ? 0 : 1] = value;
   return status;
 }
@@ -240,7 +249,9 @@ fmi3::Status Instance::Load() {
     if (names[side].empty()) continue;
     const std::string path = TablePath(names[side]);
     if (wrc_table_open(path.c_str(), &tables_[side]) != 0 ||
-        wrc_table_set_interpolation(tables_[side], int_[kInterpolation]) != 0) {
+        wrc_table_set_interpolation(tables_[side], int_[kInterpolation] == kInterpolationCubic
+                                                       ? WRC_INTERP_CUBIC
+                                                       : WRC_INTERP_LINEAR) != 0) {
       const std::string reason = wrc_last_error();
       Unload();
       return Refuse("loading the tables", reason);

@@ -8,6 +8,7 @@
 // throws out of them except std::bad_alloc from the constructor.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,14 +18,17 @@
 
 namespace wrc::fmu {
 
+/// Where an instance's messages go: the importer's logger, whichever FMI version's it is.
+/// (FMI 2.0 and 3.0 number their statuses OK to Fatal alike.)
+using LogSink = std::function<void(fmi3::Status, const char* category, const char* message)>;
+
 class Instance {
  public:
   enum class Mode { kInstantiated, kInitialization, kStep, kTerminated };
 
   /// Reads the start values from resource_path (the FMU's resources folder). Throws
   /// std::runtime_error naming the problem when they cannot be read.
-  Instance(std::string name, std::string resource_path, bool logging,
-           fmi3::LogMessageCallback logger, fmi3::InstanceEnvironment environment);
+  Instance(std::string name, std::string resource_path, bool logging, LogSink log);
   ~Instance();
   Instance(const Instance&) = delete;
   Instance& operator=(const Instance&) = delete;
@@ -40,6 +44,9 @@ class Instance {
   fmi3::Status GetInt32(fmi3::ValueReference vr, std::int32_t* value);
   fmi3::Status GetInt64(fmi3::ValueReference vr, std::int64_t* value);
   fmi3::Status SetInt64(fmi3::ValueReference vr, std::int64_t value);
+  /// FMI 2.0's Integer functions: the Int32 outputs and the enumeration.
+  fmi3::Status GetInteger(fmi3::ValueReference vr, std::int32_t* value);
+  fmi3::Status SetInteger(fmi3::ValueReference vr, std::int32_t value);
   fmi3::Status GetString(fmi3::ValueReference vr, const char** value);
   fmi3::Status SetString(fmi3::ValueReference vr, const char* value);
 
@@ -60,8 +67,7 @@ class Instance {
 
   std::string name_, resources_;
   bool logging_;
-  fmi3::LogMessageCallback logger_;
-  fmi3::InstanceEnvironment environment_;
+  LogSink log_;
   Mode mode_ = Mode::kInstantiated;
   std::vector<std::string> start_;  // start value text, by value reference ("" when none)
   std::vector<double> real_;        // Float64 variables in FMU units, by value reference

@@ -1,6 +1,6 @@
 #pragma once
-// modelDescription.xml of the wheelset FMU (FMI 3.0 co-simulation), from the variables of
-// fmu/variables.h and the start values of one table.
+// modelDescription.xml of the wheelset FMU (FMI 3.0 or 2.0 co-simulation), from the variables
+// of fmu/variables.h and the start values of one table.
 
 #include <string>
 
@@ -12,6 +12,7 @@ struct ModelDescriptionInfo {
   std::string description;      ///< What the FMU is: the table it was made from.
   std::string generation_tool;  ///< "wrc <version>".
   std::string generated_at;     ///< UTC, xs:dateTime ("2026-12-06T08:00:00Z").
+  int fmi_version = 3;          ///< 3 or 2.
 };
 
 std::string ModelDescriptionXml(const StartValues& start, const ModelDescriptionInfo& info);

@@ -12,7 +12,7 @@ namespace wrc::fmu {
 
 /// What the binary and the modelDescription.xml must agree on: a new variable layout changes
 /// it, so that an FMU whose XML and binary come from different layouts refuses to start.
-inline constexpr const char* kInstantiationToken = "{wrc-wheelset-fmu-3.0-layout-1}";
+inline constexpr const char* kInstantiationToken = "{wrc-wheelset-fmu-layout-1}";
 inline constexpr const char* kModelIdentifier = "wrc_wheelset";
 
 enum class Type { kFloat64, kInt32, kString, kEnumeration };
@@ -61,6 +61,11 @@ enum Vr : std::uint32_t {
   kStatus = kWheelsetFx + 6,
   kNumVariables
 };
+
+/// The values of the interpolation enumeration (FMI enumerations count from 1; the runtime's
+/// WRC_INTERP_* from 0).
+inline constexpr int kInterpolationLinear = 1;
+inline constexpr int kInterpolationCubic = 2;
 
 /// Per wheel: fx fy fz mx my mz contact_y contact_angle t_gamma flags.
 inline constexpr int kWheelOutputs = 10;

@@ -133,6 +133,15 @@ class Fmi3Fmu {
     const fmi3::ValueReference vr = Vr(name);
     return set_float64(instance, &vr, 1, &value, 1);
   }
+  /// fmi3DoStep, checking what a step of this FMU must report besides its status.
+  int Step(void* instance, double time, double step) const {
+    fmi3::Boolean event = true, terminate = true, early = true;
+    double reached = 0.0;
+    const fmi3::Status status =
+        do_step(instance, time, step, true, &event, &terminate, &early, &reached);
+    if (event || terminate || early || (status == fmi3::kOK && reached != time + step)) return -1;
+    return status;
+  }
 
   Instantiate instantiate = nullptr;
   Free free_instance = nullptr;

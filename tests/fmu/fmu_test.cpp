@@ -16,6 +16,8 @@
 #include <memory>
 #include <string>
 
+#include "fmu/variables.h"
+#include "tests/fmu/fmi2_importer.h"
 #include "tests/fmu/fmi3_importer.h"
 #include "tests/tools/tool_test_util.h"
 #include "wrc/runtime.h"
@@ -23,6 +25,7 @@
 namespace {
 
 namespace fs = std::filesystem;
+using wrc::test::Fmi2Fmu;
 using wrc::test::Fmi3Fmu;
 using wrc::test::Log;
 using wrc::tool_test::kSource;
@@ -58,6 +61,9 @@ class Fmu : public ::testing::Test {
     if (generate_ != 0) return;
     pack_ = RunWrcIn(*dir_, "fmu t.h5 -o wheelset.fmu", 120);
     if (pack_ == 0) wrc::test::Unzip(*dir_ / "wheelset.fmu", *dir_ / "unpacked");
+    if (pack_ == 0) pack_ = RunWrcIn(*dir_, "fmu t.h5 --fmi-version 2 -o wheelset2.fmu", 120);
+    // A space in the path: FMI 2.0 passes the resources as a URI, with %20.
+    if (pack_ == 0) wrc::test::Unzip(*dir_ / "wheelset2.fmu", *dir_ / "unpacked2");
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -70,7 +76,7 @@ class Fmu : public ::testing::Test {
   }
 
   // An instance through initialization, with the interpolation given.
-  void* Start(int interpolation = WRC_INTERP_LINEAR) {
+  void* Start(int interpolation = wrc::fmu::kInterpolationLinear) {
     void* instance = fmu_->Instantiate3(&log_, fmu_->token());
     EXPECT_NE(instance, nullptr) << log_.All();
     const fmi3::ValueReference vr = fmu_->Vr("interpolation");
@@ -92,7 +98,8 @@ int Fmu::pack_ = -1;
 
 // The runtime's wheelset on the HDF5 table, mirrored for the left wheel as the FMU is.
 struct RuntimeWheelset {
-  RuntimeWheelset(const fs::path& table, int interpolation, const Fmi3Fmu& fmu, void* instance) {
+  template <typename Importer>
+  RuntimeWheelset(const fs::path& table, int interpolation, const Importer& fmu, void* instance) {
     EXPECT_EQ(wrc_table_open(table.c_str(), &t), 0) << wrc_last_error();
     wrc_table_set_interpolation(t, interpolation);
     EXPECT_EQ(wrc_wheelset_create(nullptr, t, &w), 0) << wrc_last_error();
@@ -140,20 +147,16 @@ const Compared kCompared[] = {
 
 // Runs `steps` co-simulation steps; returns the largest difference of FMU and runtime relative
 // to the runtime's value (+1 N or N·mm), and the body's final state in *body.
-double Simulate(const Fmi3Fmu& fmu, void* instance, const RuntimeWheelset& runtime, int steps,
+template <typename Importer>
+double Simulate(const Importer& fmu, void* instance, const RuntimeWheelset& runtime, int steps,
                 Body* body) {
   double worst = 0.0;
   Body& b = *body;
   for (int i = 0; i < steps; ++i) {
     const double inputs[] = {b.y, b.yaw, b.vy, b.vyaw, kSpeed, -kSpeed / kRadius};
     const char* names[] = {"y", "yaw", "vy", "vyaw", "velocity", "omega"};
-    for (int k = 0; k < 6; ++k) EXPECT_EQ(fmu.SetFloat64(instance, names[k], inputs[k]), fmi3::kOK);
-    fmi3::Boolean event = true, terminate = true, early = true;
-    double reached = 0.0;
-    EXPECT_EQ(fmu.do_step(instance, i * kStep, kStep, true, &event, &terminate, &early, &reached),
-              fmi3::kOK);
-    EXPECT_FALSE(event || terminate || early);
-    EXPECT_DOUBLE_EQ(reached, (i + 1) * kStep);
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(fmu.SetFloat64(instance, names[k], inputs[k]), 0);
+    EXPECT_EQ(fmu.Step(instance, i * kStep, kStep), 0);
 
     wrc_wheelset_state s;
     wrc_wheelset_state_init(&s);
@@ -194,7 +197,7 @@ TEST_F(Fmu, SimulatesTwoSecondsWithTheRuntimesForces) {
 }
 
 TEST_F(Fmu, CubicInterpolationIsTheRuntimesToo) {
-  void* instance = Start(WRC_INTERP_CUBIC);
+  void* instance = Start(wrc::fmu::kInterpolationCubic);
   RuntimeWheelset runtime(*dir_ / "t.h5", WRC_INTERP_CUBIC, *fmu_, instance);
   Body body;
   EXPECT_LT(Simulate(*fmu_, instance, runtime, 200, &body), 1e-15);
@@ -224,7 +227,7 @@ TEST_F(Fmu, RefusesWhatTheStandardForbidsWithAMessage) {
   void* instance = Start();
   log_.messages.clear();
   // A fixed parameter after initialization, an output, the independent variable.
-  const std::int64_t cubic = WRC_INTERP_CUBIC;
+  const std::int64_t cubic = wrc::fmu::kInterpolationCubic;
   const fmi3::ValueReference interpolation = fmu_->Vr("interpolation");
   EXPECT_EQ(fmu_->set_int64(instance, &interpolation, 1, &cubic, 1), fmi3::kError);
   EXPECT_EQ(fmu_->SetFloat64(instance, "wheelset.fy", 1.0), fmi3::kError);
@@ -356,6 +359,71 @@ TEST_F(Fmu, ModelDescriptionValidatesAgainstTheFmiSchema) {
                               (*dir_ / "xmllint.txt").string() + "' 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << ReadFile(*dir_ / "xmllint.txt");
   EXPECT_NE(ReadFile(*dir_ / "xmllint.txt").find("validates"), std::string::npos);
+}
+
+// The same FMU as FMI 2.0: the same binary behind the older API, its XML against the 2.0.5
+// schema, the same 2 s simulation against the runtime.
+TEST_F(Fmu, AlsoServesFmi2) {
+  Fmi2Fmu fmu(*dir_ / "unpacked2");
+  EXPECT_EQ(fmu.Instantiate2(&log_, "{another FMU}"), nullptr);
+  EXPECT_NE(log_.All().find("GUID"), std::string::npos) << log_.All();
+  void* instance = fmu.Instantiate2(&log_, fmu.guid());
+  ASSERT_NE(instance, nullptr) << log_.All();
+  EXPECT_EQ(fmu.setup(instance, 0, 0.0, 0.0, 0, 0.0), 0);
+  EXPECT_EQ(fmu.enter_initialization(instance), 0);
+  EXPECT_EQ(fmu.exit_initialization(instance), 0) << log_.All();
+  RuntimeWheelset runtime(*dir_ / "t.h5", WRC_INTERP_LINEAR, fmu, instance);
+  Body body;
+  EXPECT_LT(Simulate(fmu, instance, runtime, 2000, &body), 1e-15);
+  EXPECT_LT(std::fabs(body.y), 0.002);
+  // A lookup that fails logs its reason through the variadic logger, '%' and all.
+  EXPECT_EQ(fmu.SetFloat64(instance, "velocity", -1.0), 0);
+  EXPECT_EQ(fmu.Step(instance, 2.0, kStep), 3);  // fmi2Error
+  EXPECT_NE(log_.All().find("velocity"), std::string::npos) << log_.All();
+  EXPECT_EQ(fmu.terminate(instance), 0);
+  fmu.free_instance(instance);
+  for (const char* name : {"fmi2GetTypesPlatform",
+                           "fmi2GetVersion",
+                           "fmi2SetDebugLogging",
+                           "fmi2Instantiate",
+                           "fmi2FreeInstance",
+                           "fmi2SetupExperiment",
+                           "fmi2EnterInitializationMode",
+                           "fmi2ExitInitializationMode",
+                           "fmi2Terminate",
+                           "fmi2Reset",
+                           "fmi2GetReal",
+                           "fmi2GetInteger",
+                           "fmi2GetBoolean",
+                           "fmi2GetString",
+                           "fmi2SetReal",
+                           "fmi2SetInteger",
+                           "fmi2SetBoolean",
+                           "fmi2SetString",
+                           "fmi2GetFMUstate",
+                           "fmi2SetFMUstate",
+                           "fmi2FreeFMUstate",
+                           "fmi2SerializedFMUstateSize",
+                           "fmi2SerializeFMUstate",
+                           "fmi2DeSerializeFMUstate",
+                           "fmi2GetDirectionalDerivative",
+                           "fmi2SetRealInputDerivatives",
+                           "fmi2GetRealOutputDerivatives",
+                           "fmi2DoStep",
+                           "fmi2CancelStep",
+                           "fmi2GetStatus",
+                           "fmi2GetRealStatus",
+                           "fmi2GetIntegerStatus",
+                           "fmi2GetBooleanStatus",
+                           "fmi2GetStringStatus"}) {
+    EXPECT_NE(fmu.Symbol(name), nullptr) << name;
+  }
+  const fs::path schema =
+      kSource / "tests" / "data" / "fmi" / "fmi2-schema-v2.0.5" / "fmi2ModelDescription.xsd";
+  const std::string command = "xmllint --noout --schema '" + schema.string() + "' '" +
+                              (*dir_ / "unpacked2" / "modelDescription.xml").string() + "' > '" +
+                              (*dir_ / "xmllint2.txt").string() + "' 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << ReadFile(*dir_ / "xmllint2.txt");
 }
 
 }  // namespace

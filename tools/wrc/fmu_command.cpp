@@ -1,4 +1,4 @@
-// `wrc fmu TABLE.h5 [--left LEFT.h5] -o wheelset.fmu`: the wheelset FMU (fmu/, FMI 3.0
+// `wrc fmu TABLE.h5 [--left LEFT.h5] -o wheelset.fmu`: the wheelset FMU (fmu/, FMI 3.0 or 2.0
 // co-simulation) packed with the tables it reads. The tables go in as flat tables (wrc export),
 // which the FMU's binary reads without HDF5; the start values that depend on the table (its
 // speed, its wheel load, the rail origins of its scene) go into modelDescription.xml and, from
@@ -9,6 +9,7 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "fmu/model_description.h"
@@ -63,7 +64,8 @@ StartValues StartValuesOf(const format::TableContent& right, bool has_left,
   StartValues s;
   s[kRightTable] = "right.wrct";
   s[kLeftTable] = has_left ? "left.wrct" : "";
-  s[kInterpolation] = interpolation == "cubic" ? "2" : "1";
+  s[kInterpolation] =
+      std::to_string(interpolation == "cubic" ? kInterpolationCubic : kInterpolationLinear);
   s[kLeftRailOriginY] = StartNumber(geometry.origin[WRC_LEFT][0] / 1000.0);
   s[kLeftRailOriginZ] = StartNumber(geometry.origin[WRC_LEFT][1] / 1000.0);
   s[kRightRailOriginY] = StartNumber(geometry.origin[WRC_RIGHT][0] / 1000.0);
@@ -103,7 +105,17 @@ std::string UtcNow() {
 
 struct FmuOptions {
   std::string right, left, output, interpolation = "linear";
+  int fmi_version = 3;
 };
+
+// The binary's folder: FMI 3.0 names platforms by tuple, FMI 2.0 by its own short names.
+std::string PlatformFolder(int fmi_version) {
+  const std::string tuple = FmuPlatform();
+  if (fmi_version == 3) return tuple;
+  if (tuple == "x86_64-linux") return "linux64";
+  throw std::invalid_argument("FMI 2.0 names no platform folder for " + tuple +
+                              ": use --fmi-version 3");
+}
 
 format::TableContent ReadTable(const std::string& path) {
   format::TableContent content = format::ReadTableContent(path);
@@ -112,6 +124,7 @@ format::TableContent ReadTable(const std::string& path) {
 }
 
 void PackFmu(const FmuOptions& o) {
+  const std::string platform = PlatformFolder(o.fmi_version);  // refused before any work
   RequireRegularOutput(o.output);
   RequireNotAnInput(o.output, {o.right, o.left});
   const format::TableContent right = ReadTable(o.right);
@@ -137,16 +150,18 @@ void PackFmu(const FmuOptions& o) {
                      (has_left ? " (left wheel: " + o.left + ")" : "");
   info.generation_tool = std::string("wrc ") + WRC_VERSION;
   info.generated_at = UtcNow();
+  info.fmi_version = o.fmi_version;
 
   ZipWriter zip(o.output);
   zip.Add("modelDescription.xml", fmu::ModelDescriptionXml(start, info));
-  zip.Add(std::string("binaries/") + FmuPlatform() + "/" + fmu::kModelIdentifier + ".so",
-          std::string(FmuBinary()), 0755);
+  zip.Add("binaries/" + platform + "/" + fmu::kModelIdentifier + ".so", std::string(FmuBinary()),
+          0755);
   zip.Add("resources/right.wrct", format::EncodeFlatTable(right));
   if (has_left) zip.Add("resources/left.wrct", format::EncodeFlatTable(left));
   zip.Add(std::string("resources/") + fmu::kStartValuesFile, fmu::FormatStartValues(start));
   zip.Close();
-  std::cout << "wrc fmu: wrote " << o.output << ": FMI 3.0 co-simulation, " << FmuPlatform() << ", "
+  std::cout << "wrc fmu: wrote " << o.output << ": FMI " << o.fmi_version << ".0 co-simulation, "
+            << platform << ", "
             << (has_left ? "two tables" : "one table, mirrored for the left wheel") << ", velocity "
             << base.state.velocity / 1000.0 << " m/s\n";
 }
@@ -154,8 +169,8 @@ void PackFmu(const FmuOptions& o) {
 }  // namespace
 
 void AddFmuCommand(CLI::App& app, int* exit_code) {
-  auto* cmd =
-      app.add_subcommand("fmu", "Pack a wheelset FMU (FMI 3.0 co-simulation) that reads the table");
+  auto* cmd = app.add_subcommand(
+      "fmu", "Pack a wheelset FMU (FMI 3.0 or 2.0 co-simulation) that reads the table");
   auto o = std::make_shared<FmuOptions>();
   cmd->add_option("TABLE", o->right, "Table of the right wheel (HDF5, made by wrc generate)")
       ->required();
@@ -164,6 +179,8 @@ void AddFmuCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--interpolation", o->interpolation,
                   "Start value of the FMU's interpolation parameter")
       ->check(CLI::IsMember({"linear", "cubic"}));
+  cmd->add_option("--fmi-version", o->fmi_version, "FMI version of the FMU: 3 (3.0) or 2 (2.0)")
+      ->check(CLI::IsMember({2, 3}));
   cmd->add_option("-o,--output", o->output, "The FMU to write (replaced if it exists)")->required();
   cmd->callback([=]() {
     try {
