@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runtime/format/table_content.h"
+#include "runtime/node_memory.h"
 #include "wrc/runtime.h"
 #include "wrc/runtime.hpp"
 
@@ -160,7 +161,7 @@ class Table {
   std::vector<std::size_t> node_stride_;  ///< Per axis, in nodes (row-major).
   std::size_t num_nodes_ = 0;
 
-  std::vector<double> values_;              ///< num_nodes × num_outputs (+ kReadPadding).
+  NodeMemory values_;                       ///< num_nodes × num_outputs (+ kReadPadding).
   std::vector<std::int8_t> status_;         ///< num_nodes.
   std::vector<std::uint8_t> linear_flags_;  ///< Per cell: kCellStatus | kCellNonFinite.
   /// Offsets in values_ of a cell's corners: CornerOffsets(num_outputs).
@@ -171,7 +172,7 @@ class Table {
   /// the mixed derivative ∂^|S| f / ∏_{j∈S} ∂x_j estimated by limited slopes. Built by
   /// SetInterpolation (the only allocation of cubic mode), empty until then. The node data start
   /// at hermite_[hermite_start_], on a cache-line boundary.
-  std::vector<double> hermite_;
+  NodeMemory hermite_;
   std::size_t hermite_start_ = 0;
   /// Offsets in hermite_, in doubles, of the corners of a cell relative to its lower corner:
   /// [0] lower-half corners (active axes 0 .. L-1), [1] upper-half ones (kernels.h).

@@ -65,7 +65,7 @@ void Table::BuildCubic() {
   // that a node's block (a multiple of 64 bytes for 4 axes and 6 outputs) spans as few lines as
   // possible.
   constexpr std::size_t kLineDoubles = 64 / sizeof(double);
-  std::vector<double> data(num_nodes_ * block + kLineDoubles, 0.0);
+  NodeMemory data(num_nodes_ * block + kLineDoubles);
   const std::size_t misalignment =
       reinterpret_cast<std::uintptr_t>(data.data()) / sizeof(double) % kLineDoubles;
   const std::size_t start = (kLineDoubles - misalignment) % kLineDoubles;
@@ -137,7 +137,7 @@ void Table::BuildCubic() {
   for (std::size_t node = 0; node < num_nodes_; ++node) {
     flags[node] |= linear_flags_[node] & kCellNonFinite;
   }
-  hermite_.swap(data);  // The buffer, hence its alignment, moves along.
+  hermite_ = std::move(data);  // The buffer, hence its alignment, moves along.
   hermite_start_ = start;
   cubic_flags_.swap(flags);
 }

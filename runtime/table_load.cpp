@@ -123,8 +123,10 @@ Table Table::FromContent(format::TableContent content) {
   }
   table.IndexAxes();
   const std::size_t n_out = table.outputs_.size();
-  table.values_ = std::move(content.values);
-  table.values_.resize(table.num_nodes_ * n_out + kReadPadding, 0.0);  // within the reserve
+  // Copied into memory of its own (node_memory.h), the padding zero.
+  table.values_ = NodeMemory(table.num_nodes_ * n_out + kReadPadding);
+  std::copy(content.values.begin(), content.values.end(), table.values_.data());
+  content.values = std::vector<double>();
   table.status_ = std::move(content.status);
   table.CornerOffsets(n_out, table.linear_offset_);
 
