@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "fmu/c_boundary.h"
 #include "fmu/fmi2_types.h"
 #include "fmu/instance.h"
 #include "fmu/variables.h"
@@ -48,39 +49,20 @@ std::string PathOfUri(const char* uri) {
   return path;
 }
 
+// The shared boundary (c_boundary.h) with FMI 2.0's status type.
 template <typename Body>
-Status Guard(void* instance, const char* function, Body&& body) {
-  if (instance == nullptr) return wrc::fmu::fmi2::kError;
-  auto& i = *static_cast<Instance*>(instance);
-  try {
-    return From(body(i));
-  } catch (const std::bad_alloc&) {
-    i.Refuse(function, "out of memory");
-    return wrc::fmu::fmi2::kFatal;
-  } catch (const std::exception& e) {
-    return From(i.Refuse(function, e.what()));
-  }
+Status Guard2(void* instance, const char* function, Body&& body) {
+  return From(wrc::fmu::Guard(instance, function, body));
 }
 
 template <typename Access>
-Status Each(void* instance, const char* function, const ValueReference vrs[], size_t n,
-            Access&& access) {
-  return Guard(instance, function, [&](Instance& i) {
-    if (n > 0 && vrs == nullptr) return i.Refuse(function, "NULL value references");
-    fmi3::Status worst = fmi3::kOK;
-    for (size_t k = 0; k < n; ++k) {
-      const fmi3::Status s = access(i, vrs[k], k);
-      if (s > worst) worst = s;
-      if (s >= fmi3::kError) break;
-    }
-    return worst;
-  });
+Status Each2(void* instance, const char* function, const ValueReference vrs[], size_t n,
+             Access&& access) {
+  return From(wrc::fmu::Each(instance, function, vrs, n, access));
 }
 
-Status Unsupported(void* instance, const char* function, const char* why) {
-  return Guard(instance, function, [&](Instance& i) {
-    return i.Refuse(function, std::string("not provided: ") + why);
-  });
+Status Unsupported2(void* instance, const char* function, const char* why) {
+  return From(wrc::fmu::Unsupported(instance, function, why));
 }
 
 }  // namespace
@@ -91,7 +73,7 @@ WRC_FMI2 const char* fmi2GetTypesPlatform(void) { return "default"; }
 WRC_FMI2 const char* fmi2GetVersion(void) { return "2.0"; }
 
 WRC_FMI2 Status fmi2SetDebugLogging(Instance* instance, Boolean on, size_t, const String[]) {
-  return Guard(instance, "fmi2SetDebugLogging", [&](Instance& i) {
+  return Guard2(instance, "fmi2SetDebugLogging", [&](Instance& i) {
     i.SetLogging(on != 0);
     return fmi3::kOK;
   });
@@ -135,80 +117,77 @@ WRC_FMI2 void* fmi2Instantiate(String name, wrc::fmu::fmi2::Type type, String gu
 WRC_FMI2 void fmi2FreeInstance(Instance* instance) { delete instance; }
 
 WRC_FMI2 Status fmi2SetupExperiment(Instance* instance, Boolean, Real, Real, Boolean, Real) {
-  return Guard(instance, "fmi2SetupExperiment", [](Instance&) { return fmi3::kOK; });
+  return Guard2(instance, "fmi2SetupExperiment", [](Instance&) { return fmi3::kOK; });
 }
 WRC_FMI2 Status fmi2EnterInitializationMode(Instance* instance) {
-  return Guard(instance, "fmi2EnterInitializationMode",
-               [](Instance& i) { return i.EnterInitialization(); });
+  return Guard2(instance, "fmi2EnterInitializationMode",
+                [](Instance& i) { return i.EnterInitialization(); });
 }
 WRC_FMI2 Status fmi2ExitInitializationMode(Instance* instance) {
-  return Guard(instance, "fmi2ExitInitializationMode",
-               [](Instance& i) { return i.ExitInitialization(); });
+  return Guard2(instance, "fmi2ExitInitializationMode",
+                [](Instance& i) { return i.ExitInitialization(); });
 }
 WRC_FMI2 Status fmi2Terminate(Instance* instance) {
-  return Guard(instance, "fmi2Terminate", [](Instance& i) { return i.Terminate(); });
+  return Guard2(instance, "fmi2Terminate", [](Instance& i) { return i.Terminate(); });
 }
 WRC_FMI2 Status fmi2Reset(Instance* instance) {
-  return Guard(instance, "fmi2Reset", [](Instance& i) { return i.Reset(); });
+  return Guard2(instance, "fmi2Reset", [](Instance& i) { return i.Reset(); });
 }
 
 WRC_FMI2 Status fmi2GetReal(Instance* instance, const ValueReference vrs[], size_t n,
                             Real values[]) {
-  return Each(instance, "fmi2GetReal", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+  return Each2(instance, "fmi2GetReal", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
     return i.GetFloat64(vr, &values[k]);
   });
 }
 WRC_FMI2 Status fmi2SetReal(Instance* instance, const ValueReference vrs[], size_t n,
                             const Real values[]) {
-  return Each(instance, "fmi2SetReal", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+  return Each2(instance, "fmi2SetReal", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
     return i.SetFloat64(vr, values[k]);
   });
 }
 WRC_FMI2 Status fmi2GetInteger(Instance* instance, const ValueReference vrs[], size_t n,
                                Integer values[]) {
-  return Each(instance, "fmi2GetInteger", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+  return Each2(instance, "fmi2GetInteger", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
     return i.GetInteger(vr, &values[k]);
   });
 }
 WRC_FMI2 Status fmi2SetInteger(Instance* instance, const ValueReference vrs[], size_t n,
                                const Integer values[]) {
-  return Each(instance, "fmi2SetInteger", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+  return Each2(instance, "fmi2SetInteger", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
     return i.SetInteger(vr, values[k]);
   });
 }
 WRC_FMI2 Status fmi2GetString(Instance* instance, const ValueReference vrs[], size_t n,
                               String values[]) {
-  return Each(instance, "fmi2GetString", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+  return Each2(instance, "fmi2GetString", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
     return i.GetString(vr, &values[k]);
   });
 }
 WRC_FMI2 Status fmi2SetString(Instance* instance, const ValueReference vrs[], size_t n,
                               const String values[]) {
-  return Each(instance, "fmi2SetString", vrs, n,
-              [&](Instance& i, ValueReference vr, size_t k) { return i.SetString(vr, values[k]); });
+  return Each2(instance, "fmi2SetString", vrs, n, [&](Instance& i, ValueReference vr, size_t k) {
+    return i.SetString(vr, values[k]);
+  });
 }
 WRC_FMI2 Status fmi2GetBoolean(Instance* instance, const ValueReference[], size_t n, Boolean[]) {
-  return Guard(instance, "fmi2GetBoolean", [&](Instance& i) {
-    return n == 0 ? fmi3::kOK : i.Refuse("fmi2GetBoolean", "the FMU has no Boolean variables");
-  });
+  return From(wrc::fmu::NoVariablesOfType(instance, "fmi2GetBoolean", n));
 }
 WRC_FMI2 Status fmi2SetBoolean(Instance* instance, const ValueReference[], size_t n,
                                const Boolean[]) {
-  return Guard(instance, "fmi2SetBoolean", [&](Instance& i) {
-    return n == 0 ? fmi3::kOK : i.Refuse("fmi2SetBoolean", "the FMU has no Boolean variables");
-  });
+  return From(wrc::fmu::NoVariablesOfType(instance, "fmi2SetBoolean", n));
 }
 
 WRC_FMI2 Status fmi2DoStep(Instance* instance, Real time, Real step, Boolean) {
-  return Guard(instance, "fmi2DoStep", [&](Instance& i) { return i.DoStep(time, step); });
+  return Guard2(instance, "fmi2DoStep", [&](Instance& i) { return i.DoStep(time, step); });
 }
 WRC_FMI2 Status fmi2CancelStep(Instance* instance) {
-  return Unsupported(instance, "fmi2CancelStep", "fmi2DoStep never returns fmi2Pending");
+  return Unsupported2(instance, "fmi2CancelStep", "fmi2DoStep never returns fmi2Pending");
 }
 
 #define WRC_FMI2_UNSUPPORTED(name, why, ...)              \
   WRC_FMI2 Status name(Instance* instance, __VA_ARGS__) { \
-    return Unsupported(instance, #name, why);             \
+    return Unsupported2(instance, #name, why);            \
   }
 #define WRC_NO_STATE "canGetAndSetFMUstate is false"
 WRC_FMI2_UNSUPPORTED(fmi2GetFMUstate, WRC_NO_STATE, FMUstate*)

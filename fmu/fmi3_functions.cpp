@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "fmu/c_boundary.h"
 #include "fmu/fmi3_types.h"
 #include "fmu/instance.h"
 #include "fmu/variables.h"
@@ -28,52 +29,20 @@ using wrc::fmu::fmi3::LogMessageCallback, wrc::fmu::fmi3::Status, wrc::fmu::fmi3
 using wrc::fmu::fmi3::UInt16, wrc::fmu::fmi3::UInt32, wrc::fmu::fmi3::UInt64, wrc::fmu::fmi3::UInt8;
 using wrc::fmu::fmi3::UnlockPreemptionCallback, wrc::fmu::fmi3::ValueReference;
 
+using wrc::fmu::Guard, wrc::fmu::NoVariablesOfType, wrc::fmu::Unsupported;
+
 namespace {
 
-Instance* Cast(void* instance) { return static_cast<Instance*>(instance); }
-
-// Runs body (a callable returning Status) on a live instance, turning exceptions into statuses.
-template <typename Body>
-Status Guard(void* instance, const char* function, Body&& body) {
-  if (instance == nullptr) return kError;
-  try {
-    return body(*Cast(instance));
-  } catch (const std::bad_alloc&) {
-    Cast(instance)->Refuse(function, "out of memory");
-    return kFatal;
-  } catch (const std::exception& e) {
-    return Cast(instance)->Refuse(function, e.what());
-  }
-}
-
-Status Unsupported(void* instance, const char* function, const char* why) {
-  return Guard(instance, function, [&](Instance& i) {
-    return i.Refuse(function, std::string("not provided: ") + why);
-  });
-}
-
-// Get or Set of scalars: one value per reference; the first refusal stops.
+// Get or Set of scalars: FMI 3.0 passes the number of values too, one per reference here.
 template <typename Access>
 Status Each(void* instance, const char* function, const ValueReference vrs[], size_t n,
             size_t n_values, Access&& access) {
-  return Guard(instance, function, [&](Instance& i) {
-    if (n != n_values) return i.Refuse(function, "nValues differs from nValueReferences");
-    if (n > 0 && vrs == nullptr) return i.Refuse(function, "NULL value references");
-    Status worst = kOK;
-    for (size_t k = 0; k < n; ++k) {
-      const Status s = access(i, vrs[k], k);
-      if (s > worst) worst = s;
-      if (s >= kError) break;
-    }
-    return worst;
-  });
-}
-
-// Types the FMU has no variables of: any reference is refused, none is fine.
-Status NoVariablesOfType(void* instance, const char* function, size_t n) {
-  return Guard(instance, function, [&](Instance& i) {
-    return n == 0 ? kOK : i.Refuse(function, "the FMU has no variables of this type");
-  });
+  if (n != n_values) {
+    return Guard(instance, function, [&](Instance& i) {
+      return i.Refuse(function, "nValues differs from nValueReferences");
+    });
+  }
+  return wrc::fmu::Each(instance, function, vrs, n, access);
 }
 
 }  // namespace

@@ -21,20 +21,6 @@ std::string ReadStartValuesText(const std::string& resources) {
   return text.str();
 }
 
-const char* TypeName(Type type) {
-  switch (type) {
-    case Type::kFloat64:
-      return "Float64";
-    case Type::kInt32:
-      return "Int32";
-    case Type::kString:
-      return "String";
-    case Type::kEnumeration:
-      return "Enumeration (Int64)";
-  }
-  return "?";
-}
-
 }  // namespace
 
 Instance::Instance(std::string name, std::string resource_path, bool logging, LogSink log)

@@ -23,20 +23,6 @@ const char* CausalityName(Causality c) {
   return "";
 }
 
-const char* ElementName(Type t) {
-  switch (t) {
-    case Type::kFloat64:
-      return "Float64";
-    case Type::kInt32:
-      return "Int32";
-    case Type::kString:
-      return "String";
-    case Type::kEnumeration:
-      return "Enumeration";
-  }
-  return "";
-}
-
 // Parameters are fixed (the tables load once); the flags and status are discrete outputs.
 const char* Variability(const Variable& v) {
   if (v.causality == Causality::kParameter) return "fixed";
@@ -78,7 +64,7 @@ void WriteLogCategories(std::ostream& x) {
 }
 
 void WriteVariable(std::ostream& x, const Variable& v, const StartValues& start) {
-  x << "    <" << ElementName(v.type) << " name=\"" << XmlEscape(v.name) << "\" valueReference=\""
+  x << "    <" << TypeName(v.type) << " name=\"" << XmlEscape(v.name) << "\" valueReference=\""
     << v.value_reference << "\" description=\"" << XmlEscape(v.description) << "\" causality=\""
     << CausalityName(v.causality) << "\" variability=\"" << Variability(v) << '"';
   if (v.type == Type::kEnumeration) x << " declaredType=\"Interpolation\"";

@@ -115,6 +115,20 @@ std::vector<Variable> Build() {
 
 }  // namespace
 
+const char* TypeName(Type type) {
+  switch (type) {
+    case Type::kFloat64:
+      return "Float64";
+    case Type::kInt32:
+      return "Int32";
+    case Type::kString:
+      return "String";
+    case Type::kEnumeration:
+      return "Enumeration";
+  }
+  return "";
+}
+
 const std::vector<Variable>& Variables() {
   static const std::vector<Variable> list = Build();
   return list;

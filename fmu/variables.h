@@ -71,6 +71,9 @@ inline constexpr int kInterpolationCubic = 2;
 inline constexpr int kWheelOutputs = 10;
 inline constexpr int kFlagsOffset = 9;
 
+/// The type's name in FMI 3.0 ("Float64", "Int32", "String", "Enumeration").
+const char* TypeName(Type type);
+
 /// All kNumVariables variables, indexed by value reference.
 const std::vector<Variable>& Variables();
 

@@ -3,13 +3,12 @@
 // unpacked FMU's binaries/linux64 library, its functions bound by name, the value references
 // read from a 2.0 modelDescription.xml, and a logger that formats its message as printf does.
 
-#include <dlfcn.h>
-
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -56,8 +55,7 @@ class Fmi2Fmu {
       vr_[(*it)[1]] = static_cast<fmi2::ValueReference>(std::stoul((*it)[2]));
     }
     const auto so = dir / "binaries" / "linux64" / "wrc_wheelset.so";
-    handle_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle_ == nullptr) throw std::runtime_error(std::string("dlopen: ") + dlerror());
+    library_ = std::make_unique<SharedLibrary>(so);
     instantiate = Bind<Instantiate>("fmi2Instantiate");
     free_instance = Bind<void (*)(void*)>("fmi2FreeInstance");
     setup = Bind<Setup>("fmi2SetupExperiment");
@@ -69,13 +67,10 @@ class Fmi2Fmu {
     get_integer = Bind<GetInteger>("fmi2GetInteger");
     do_step = Bind<DoStep>("fmi2DoStep");
   }
-  ~Fmi2Fmu() {
-    if (handle_ != nullptr) dlclose(handle_);
-  }
   Fmi2Fmu(const Fmi2Fmu&) = delete;
   Fmi2Fmu& operator=(const Fmi2Fmu&) = delete;
 
-  void* Symbol(const char* name) const { return dlsym(handle_, name); }
+  void* Symbol(const char* name) const { return library_->Symbol(name); }
   fmi2::ValueReference Vr(const std::string& name) const { return vr_.at(name); }
   const std::string& guid() const { return guid_; }
   /// The resources folder as a file URI, a space written %20 as an importer writes it.
@@ -117,16 +112,14 @@ class Fmi2Fmu {
  private:
   template <typename F>
   F Bind(const char* name) const {
-    void* symbol = dlsym(handle_, name);
-    if (symbol == nullptr) throw std::runtime_error(std::string("not exported: ") + name);
-    return reinterpret_cast<F>(symbol);
+    return library_->Bind<F>(name);
   }
 
   std::filesystem::path dir_;
   std::string xml_, guid_;
   std::map<std::string, fmi2::ValueReference> vr_;
   fmi2::CallbackFunctions callbacks_{};
-  void* handle_ = nullptr;
+  std::unique_ptr<SharedLibrary> library_;
 };
 
 }  // namespace wrc::test

@@ -5,19 +5,20 @@
 // the functions by name and runs the co-simulation calls. It checks what an importer relies
 // on: that every function of the interface is exported.
 
-#include <dlfcn.h>
 #include <zip.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "fmu/fmi3_types.h"
+#include "tests/fmu/shared_library.h"
 
 namespace wrc::test {
 
@@ -90,8 +91,7 @@ class Fmi3Fmu {
       vr_[(*it)[2]] = static_cast<fmi3::ValueReference>(std::stoul((*it)[3]));
     }
     const auto so = dir / "binaries" / "x86_64-linux" / (identifier_ + ".so");
-    handle_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle_ == nullptr) throw std::runtime_error(std::string("dlopen: ") + dlerror());
+    library_ = std::make_unique<SharedLibrary>(so);
     instantiate = Bind<Instantiate>("fmi3InstantiateCoSimulation");
     free_instance = Bind<Free>("fmi3FreeInstance");
     enter_initialization = Bind<EnterInit>("fmi3EnterInitializationMode");
@@ -105,13 +105,10 @@ class Fmi3Fmu {
     set_string = Bind<Set<fmi3::String>>("fmi3SetString");
     do_step = Bind<DoStep>("fmi3DoStep");
   }
-  ~Fmi3Fmu() {
-    if (handle_ != nullptr) dlclose(handle_);
-  }
   Fmi3Fmu(const Fmi3Fmu&) = delete;
   Fmi3Fmu& operator=(const Fmi3Fmu&) = delete;
 
-  void* Symbol(const char* name) const { return dlsym(handle_, name); }
+  void* Symbol(const char* name) const { return library_->Symbol(name); }
   fmi3::ValueReference Vr(const std::string& name) const { return vr_.at(name); }
   const std::string& token() const { return token_; }
   std::string resources() const { return (dir_ / "resources").string() + "/"; }
@@ -164,15 +161,13 @@ class Fmi3Fmu {
   }
   template <typename F>
   F Bind(const char* name) const {
-    void* symbol = dlsym(handle_, name);
-    if (symbol == nullptr) throw std::runtime_error(std::string("not exported: ") + name);
-    return reinterpret_cast<F>(symbol);
+    return library_->Bind<F>(name);
   }
 
   std::filesystem::path dir_;
   std::string xml_, identifier_, token_;
   std::map<std::string, fmi3::ValueReference> vr_;
-  void* handle_ = nullptr;
+  std::unique_ptr<SharedLibrary> library_;
 };
 
 }  // namespace wrc::test
