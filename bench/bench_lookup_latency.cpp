@@ -3,7 +3,9 @@
 // that their wrc_* functions do not clash) and the cases run on each in turn, round after round,
 // so that a comparison of two builds sees the same machine state.
 //
-//   bench_lookup_latency TABLE.h5 [RUNTIME.so ...]    (default: this build's shared runtime)
+//   bench_lookup_latency TABLE.h5 [RUNTIME.so[:float32] ...]    (default: this build's runtime)
+//
+// ":float32" reads the node data as floats (wrc_table_set_storage, where the runtime has it).
 //
 // Cases, on the table's own axes (one wheel) and on a wheelset reading it for both wheels:
 //  - random: points uniform over the axis box (every lookup a new cell, mostly from DRAM);
@@ -49,6 +51,7 @@ struct Runtime {
   decltype(&wrc_wheelset_destroy) wheelset_destroy;
   decltype(&wrc_wheelset_eval) wheelset_eval;
   decltype(&wrc_wheelset_state_init) state_init;
+  bool float32 = false;
   wrc_table* linear = nullptr;
   wrc_table* cubic = nullptr;
   wrc_wheelset* wheelset_linear = nullptr;
@@ -69,9 +72,14 @@ void Fail(const Runtime& r, const char* what) {
   std::exit(2);
 }
 
-Runtime Load(const std::string& path, const char* table) {
+Runtime Load(const std::string& argument, const char* table) {
   Runtime r;
-  r.path = path;
+  r.path = argument;
+  std::string path = argument;
+  if (const auto colon = path.rfind(":float32"); colon != std::string::npos) {
+    path.erase(colon);
+    r.float32 = true;
+  }
   r.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (r.handle == nullptr) {
     std::fprintf(stderr, "bench_lookup_latency: %s\n", dlerror());
@@ -93,6 +101,14 @@ Runtime Load(const std::string& path, const char* table) {
   if (r.open(table, &r.linear) != 0 || r.open(table, &r.cubic) != 0 ||
       r.set_interpolation(r.cubic, WRC_INTERP_CUBIC) != 0) {
     Fail(r, "open");
+  }
+  if (r.float32) {
+    decltype(&wrc_table_set_storage) set_storage = nullptr;
+    Bind(r.handle, "wrc_table_set_storage", &set_storage);
+    if (set_storage(r.linear, WRC_STORAGE_FLOAT32) != 0 ||
+        set_storage(r.cubic, WRC_STORAGE_FLOAT32) != 0) {
+      Fail(r, "float32");
+    }
   }
   if (r.wheelset_create(nullptr, r.linear, &r.wheelset_linear) != 0 ||
       r.wheelset_create(nullptr, r.cubic, &r.wheelset_cubic) != 0) {

@@ -191,6 +191,15 @@ void SetInterpolation(PyTable& self, const std::string& mode) {
                                                 : wrc::Interpolation::kCubic);
 }
 
+void SetStorage(PyTable& self, const std::string& storage) {
+  if (storage != "float64" && storage != "float32") {
+    throw py::value_error("storage: 'float64' or 'float32', not '" + storage + "'");
+  }
+  py::gil_scoped_release release;
+  std::unique_lock lock(self.mode_mutex);
+  self.table.set_storage(storage == "float64" ? wrc::Storage::kFloat64 : wrc::Storage::kFloat32);
+}
+
 // ------------------------------------------------------------------------------------------
 // Wheelsets
 
@@ -381,6 +390,17 @@ PYBIND11_MODULE(wrc, m) {
           [](py::handle s, const std::string& mode) {
             SetInterpolation(Constructed<PyTable>(s), mode);
           })
+      .def_property(
+          "storage",
+          [](py::handle s) {
+            return Constructed<PyTable>(s).table.storage() == wrc::Storage::kFloat32 ? "float32"
+                                                                                     : "float64";
+          },
+          [](py::handle s, const std::string& storage) {
+            SetStorage(Constructed<PyTable>(s), storage);
+          },
+          "What lookups read: 'float64' (the table's doubles) or 'float32' (a float copy: half "
+          "the memory traffic, values within the float rounding of the node data)")
       .def(
           "eval",
           [](py::handle s, const py::handle& points) {

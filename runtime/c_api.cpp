@@ -177,6 +177,32 @@ int wrc_table_interpolation(const wrc_table* t) {
   return CheckTable(t, "wrc_table_interpolation") ? t->table.interpolation() : WRC_ERR_NULL_POINTER;
 }
 
+int wrc_table_set_storage(wrc_table* t, int storage) {
+  if (!CheckTable(t, "wrc_table_set_storage")) return WRC_ERR_NULL_POINTER;
+  if (storage != WRC_STORAGE_FLOAT64 && storage != WRC_STORAGE_FLOAT32) {
+    SetLastError(
+        "wrc_table_set_storage: %s: unknown storage %d (WRC_STORAGE_FLOAT64 = %d, "
+        "WRC_STORAGE_FLOAT32 = %d)",
+        t->table.path().c_str(), storage, WRC_STORAGE_FLOAT64, WRC_STORAGE_FLOAT32);
+    return WRC_ERR_INVALID_ARGUMENT;
+  }
+  try {
+    t->table.SetStorage(storage);
+    return 0;
+  } catch (const std::bad_alloc&) {
+    SetLastError("wrc_table_set_storage: %s: out of memory for the float32 copy",
+                 t->table.path().c_str());
+    return WRC_ERR_OUT_OF_MEMORY;
+  } catch (...) {
+    SetLastError("wrc_table_set_storage: %s: internal error", t->table.path().c_str());
+    return WRC_ERR_INTERNAL;
+  }
+}
+
+int wrc_table_storage(const wrc_table* t) {
+  return CheckTable(t, "wrc_table_storage") ? t->table.storage() : WRC_ERR_NULL_POINTER;
+}
+
 int wrc_table_axis_index(const wrc_table* t, const char* name) {
   if (!CheckTable(t, "wrc_table_axis_index")) return WRC_ERR_NULL_POINTER;
   if (name == nullptr) {

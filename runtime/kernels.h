@@ -26,7 +26,8 @@ constexpr std::size_t kMaxHalf = kMaxHalfCorners;
 
 /// Multilinear interpolation at one point: the 2^D corners of the cell.
 struct LinearTerms {
-  const double* values;  ///< First output of the cell's lower corner node.
+  const double* values;   ///< First output of the cell's lower corner node.
+  const float* values32;  ///< The same in the float32 copy (float32 storage), else null.
   std::size_t n_outputs;
   std::size_t n_axes;
   int n_active;                   ///< D >= 1.
@@ -49,7 +50,8 @@ struct LinearTerms {
 /// weight of corner c and subset s is ∏ over the axes j of basis[j][2·c_j + s_j]; the kernel
 /// forms these products itself, with D known at compile time.
 struct CubicTerms {
-  const double* base;  ///< Hermite data of the cell's lower corner node, first output.
+  const double* base;   ///< Hermite data of the cell's lower corner node, first output.
+  const float* base32;  ///< The same in the float32 copy (float32 storage), else null.
   std::size_t n_outputs;
   std::size_t n_axes;
   int n_active;
@@ -65,9 +67,12 @@ struct CubicTerms {
 
 /// Writes out (n_outputs values) and, unless d_out is null, the active axes' entries of d_out
 /// (other entries untouched; callers zero them).
+/// The *32 kernels read the float32 copies (values32, base32) and sum in double.
 struct Kernels {
   void (*linear)(const LinearTerms& terms, double* out, double* d_out);
   void (*cubic)(const CubicTerms& terms, double* out, double* d_out);
+  void (*linear32)(const LinearTerms& terms, double* out, double* d_out);
+  void (*cubic32)(const CubicTerms& terms, double* out, double* d_out);
 };
 
 namespace generic {

@@ -2,12 +2,14 @@
 // Memory for a table's node data, on huge pages where the system grants them (Linux, with
 // transparent huge pages "always" or "madvise"): a random lookup reads 16–32 rows spread over
 // tens of megabytes, and with 4 KiB pages each row is also a TLB miss, a page walk added to its
-// cache miss. Zero-initialised doubles; elsewhere than Linux an ordinary allocation.
+// cache miss. Zero-initialised numbers (double, or float for float32 storage); elsewhere than
+// Linux an ordinary allocation.
 
 #include <cstddef>
 
 namespace wrc::runtime {
 
+template <typename T>
 class NodeMemory {
  public:
   NodeMemory() = default;
@@ -19,19 +21,22 @@ class NodeMemory {
   NodeMemory(const NodeMemory& other);
   NodeMemory& operator=(const NodeMemory& other);
 
-  double* data() noexcept { return data_; }
-  const double* data() const noexcept { return data_; }
+  T* data() noexcept { return data_; }
+  const T* data() const noexcept { return data_; }
   std::size_t size() const noexcept { return size_; }
   bool empty() const noexcept { return size_ == 0; }
-  double& operator[](std::size_t i) noexcept { return data_[i]; }
-  const double& operator[](std::size_t i) const noexcept { return data_[i]; }
+  T& operator[](std::size_t i) noexcept { return data_[i]; }
+  const T& operator[](std::size_t i) const noexcept { return data_[i]; }
 
  private:
   void Release() noexcept;
 
-  double* data_ = nullptr;
+  T* data_ = nullptr;
   std::size_t size_ = 0;
   std::size_t bytes_ = 0;  // as mapped
 };
+
+extern template class NodeMemory<double>;
+extern template class NodeMemory<float>;
 
 }  // namespace wrc::runtime

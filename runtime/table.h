@@ -90,6 +90,10 @@ class Table {
   int interpolation() const { return interpolation_; }
   /// Switches mode; builds the cubic node data on first use (may throw std::bad_alloc).
   void SetInterpolation(int mode);
+  int storage() const { return storage_; }
+  /// WRC_STORAGE_FLOAT64 or _FLOAT32: makes or drops the float copies (may throw
+  /// std::bad_alloc).
+  void SetStorage(int storage);
 
   /// Interpolates; d_out may be null. Returns flags >= 0 or a negative WRC_ERR_* code after
   /// SetLastError. Thread-safe, allocation-free.
@@ -161,7 +165,7 @@ class Table {
   std::vector<std::size_t> node_stride_;  ///< Per axis, in nodes (row-major).
   std::size_t num_nodes_ = 0;
 
-  NodeMemory values_;                       ///< num_nodes × num_outputs (+ kReadPadding).
+  NodeMemory<double> values_;               ///< num_nodes × num_outputs (+ kReadPadding).
   std::vector<std::int8_t> status_;         ///< num_nodes.
   std::vector<std::uint8_t> linear_flags_;  ///< Per cell: kCellStatus | kCellNonFinite.
   /// Offsets in values_ of a cell's corners: CornerOffsets(num_outputs).
@@ -172,12 +176,18 @@ class Table {
   /// the mixed derivative ∂^|S| f / ∏_{j∈S} ∂x_j estimated by limited slopes. Built by
   /// SetInterpolation (the only allocation of cubic mode), empty until then. The node data start
   /// at hermite_[hermite_start_], on a cache-line boundary.
-  NodeMemory hermite_;
+  NodeMemory<double> hermite_;
   std::size_t hermite_start_ = 0;
   /// Offsets in hermite_, in doubles, of the corners of a cell relative to its lower corner:
   /// [0] lower-half corners (active axes 0 .. L-1), [1] upper-half ones (kernels.h).
   std::size_t cubic_offset_[2][kMaxHalfCorners] = {};
   std::vector<std::uint8_t> cubic_flags_;
+
+  int storage_ = WRC_STORAGE_FLOAT64;
+  /// With float32 storage: values_ and the cubic data as floats, same layout and offsets (the
+  /// cubic data then live here only: hermite_ is dropped).
+  NodeMemory<float> values32_;
+  NodeMemory<float> hermite32_;
 };
 
 }  // namespace wrc::runtime

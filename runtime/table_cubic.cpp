@@ -65,7 +65,7 @@ void Table::BuildCubic() {
   // that a node's block (a multiple of 64 bytes for 4 axes and 6 outputs) spans as few lines as
   // possible.
   constexpr std::size_t kLineDoubles = 64 / sizeof(double);
-  NodeMemory data(num_nodes_ * block + kLineDoubles);
+  NodeMemory<double> data(num_nodes_ * block + kLineDoubles);
   const std::size_t misalignment =
       reinterpret_cast<std::uintptr_t>(data.data()) / sizeof(double) % kLineDoubles;
   const std::size_t start = (kLineDoubles - misalignment) % kLineDoubles;
@@ -148,12 +148,17 @@ void Table::EvalCubic(const Located& located, double* out, double* d_out) const 
   terms.n_axes = axes_.size();
   terms.n_active = static_cast<int>(active_axes_.size());
   const std::size_t block = (std::size_t{1} << terms.n_active) * terms.n_outputs;
-  terms.base = hermite_.data() + hermite_start_ + located.base_node * block;
+  const bool float32 = storage_ == WRC_STORAGE_FLOAT32;
+  const std::size_t first = hermite_start_ + located.base_node * block;
+  terms.base = float32 ? nullptr : hermite_.data() + first;
+  terms.base32 = float32 ? hermite32_.data() + first : nullptr;
   if (d_out != nullptr) {
     for (std::size_t i = 0; i < terms.n_outputs * terms.n_axes; ++i) d_out[i] = 0.0;
   }
   if (terms.n_active == 0) {  // A single node.
-    for (std::size_t k = 0; k < terms.n_outputs; ++k) out[k] = terms.base[k];
+    for (std::size_t k = 0; k < terms.n_outputs; ++k) {
+      out[k] = float32 ? static_cast<double>(terms.base32[k]) : terms.base[k];
+    }
     return;
   }
   terms.lower_offset = cubic_offset_[0];
@@ -172,7 +177,7 @@ void Table::EvalCubic(const Located& located, double* out, double* d_out) const 
     d_basis[2] = (6.0 * t - 6.0 * t2) * inverse_h;
     d_basis[3] = 3.0 * t2 - 2.0 * t;
   }
-  kernels_->cubic(terms, out, d_out);
+  (float32 ? kernels_->cubic32 : kernels_->cubic)(terms, out, d_out);
 }
 
 }  // namespace wrc::runtime

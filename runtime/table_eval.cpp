@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 #include "runtime/kernels.h"
 #include "runtime/table.h"
@@ -120,12 +121,13 @@ void CornerWeights(int count, const double* lower, const double* upper, double* 
 // before the kernel reads the first, so that the misses overlap instead of following the
 // kernel's order. (A row of 11 outputs spans two cache lines at most; its pair along the last
 // axis is the next row.)
-void PrefetchCorners(const LinearTerms& terms) {
+template <typename T>
+void PrefetchCorners(const LinearTerms& terms, const T* values) {
   const std::size_t n_lower = std::size_t{1} << terms.n_lower_axes;
   for (std::size_t u = 0; u < terms.n_upper; ++u) {
-    const double* block = terms.values + terms.upper_offset[u];
+    const T* block = values + terms.upper_offset[u];
     for (std::size_t l = 0; l < n_lower; ++l) {
-      const double* row = block + terms.lower_offset[l];
+      const T* row = block + terms.lower_offset[l];
       __builtin_prefetch(row);
       __builtin_prefetch(row + terms.n_outputs - 1);
     }
@@ -139,6 +141,8 @@ void Table::EvalLinear(const Located& located, double* out, double* d_out) const
   terms.n_outputs = outputs_.size();
   terms.n_axes = axes_.size();
   terms.values = values_.data() + located.base_node * terms.n_outputs;
+  const bool float32 = storage_ == WRC_STORAGE_FLOAT32;
+  terms.values32 = float32 ? values32_.data() + located.base_node * terms.n_outputs : nullptr;
   terms.n_active = static_cast<int>(active_axes_.size());
   if (d_out != nullptr) {
     for (std::size_t i = 0; i < terms.n_outputs * terms.n_axes; ++i) d_out[i] = 0.0;
@@ -161,7 +165,11 @@ void Table::EvalLinear(const Located& located, double* out, double* d_out) const
     lower[j] = 1.0 - located.cell[j].t;
     upper[j] = located.cell[j].t;
   }
-  PrefetchCorners(terms);
+  if (float32) {
+    PrefetchCorners(terms, terms.values32);
+  } else {
+    PrefetchCorners(terms, terms.values);
+  }
   CornerWeights(n_lower_axes, lower, upper, terms.lower_weight);
   CornerWeights(n_upper_axes, lower + n_lower_axes, upper + n_lower_axes, terms.upper_weight);
   if (d_out != nullptr) {
@@ -182,7 +190,7 @@ void Table::EvalLinear(const Located& located, double* out, double* d_out) const
       upper[j] = saved_upper;
     }
   }
-  kernels_->linear(terms, out, d_out);
+  (float32 ? kernels_->linear32 : kernels_->linear)(terms, out, d_out);
 }
 
 namespace {
@@ -306,9 +314,38 @@ int Table::Eval(const double* point, double* out, double* d_out) const noexcept 
   return flags;
 }
 
+namespace {
+
+NodeMemory<float> FloatCopy(const NodeMemory<double>& from) {
+  NodeMemory<float> copy(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i) copy[i] = static_cast<float>(from[i]);
+  return copy;
+}
+
+}  // namespace
+
+// The cubic data exist in one storage at a time: a table switched to float32 keeps only the
+// float copy (half the memory; they are the largest data of a cubic table).
 void Table::SetInterpolation(int mode) {
-  if (mode == WRC_INTERP_CUBIC && hermite_.empty()) BuildCubic();
+  if (mode == WRC_INTERP_CUBIC && hermite_.empty() && hermite32_.empty()) {
+    BuildCubic();
+    if (storage_ == WRC_STORAGE_FLOAT32) hermite32_ = FloatCopy(std::exchange(hermite_, {}));
+  }
   interpolation_ = mode;
+}
+
+void Table::SetStorage(int storage) {
+  if (storage == WRC_STORAGE_FLOAT32) {
+    if (values32_.empty()) values32_ = FloatCopy(values_);
+    if (!hermite_.empty()) hermite32_ = FloatCopy(std::exchange(hermite_, {}));
+  } else {
+    values32_ = {};
+    if (!hermite32_.empty()) {
+      hermite32_ = {};
+      BuildCubic();
+    }
+  }
+  storage_ = storage;
 }
 
 }  // namespace wrc::runtime

@@ -124,7 +124,7 @@ Table Table::FromContent(format::TableContent content) {
   table.IndexAxes();
   const std::size_t n_out = table.outputs_.size();
   // Copied into memory of its own (node_memory.h), the padding zero.
-  table.values_ = NodeMemory(table.num_nodes_ * n_out + kReadPadding);
+  table.values_ = NodeMemory<double>(table.num_nodes_ * n_out + kReadPadding);
   std::copy(content.values.begin(), content.values.end(), table.values_.data());
   content.values = std::vector<double>();
   table.status_ = std::move(content.status);

@@ -182,6 +182,26 @@ WRC_API int wrc_table_set_interpolation(wrc_table* t, int mode);
 /** The handle's interpolation mode, or a negative code. */
 WRC_API int wrc_table_interpolation(const wrc_table* t);
 
+/** @name Storage of the node data a lookup reads
+ *  @{ */
+/** Doubles, as the table holds them. The default. */
+#define WRC_STORAGE_FLOAT64 0
+/** A float copy of the node data (and of the cubic data): half the memory a lookup reads, the
+ *  sums still in double. Values change by the float rounding of the node data, at most 6e-8
+ *  of a value (runtime/README.md says what it does on the shipped table). */
+#define WRC_STORAGE_FLOAT32 1
+/** @} */
+
+/** Selects what this handle's lookups read: WRC_STORAGE_FLOAT64 or WRC_STORAGE_FLOAT32. The
+ *  switch to float32 allocates the copy (the doubles stay, for wrc_table_node_values and for
+ *  cells next to failed nodes, which are interpolated from them); it may fail with
+ *  WRC_ERR_OUT_OF_MEMORY. Not to be called while other threads evaluate this handle.
+ *  @return 0 or a negative code. */
+WRC_API int wrc_table_set_storage(wrc_table* t, int storage);
+
+/** The handle's storage, or a negative code. */
+WRC_API int wrc_table_storage(const wrc_table* t);
+
 /** Index of the axis called name, or WRC_ERR_NOT_FOUND (or another negative code). */
 WRC_API int wrc_table_axis_index(const wrc_table* t, const char* name);
 

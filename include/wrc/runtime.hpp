@@ -26,6 +26,7 @@ class TableError : public std::runtime_error {
 
 /// Interpolation modes of WRC_INTERP_*.
 enum class Interpolation : int { kLinear = WRC_INTERP_LINEAR, kCubic = WRC_INTERP_CUBIC };
+enum class Storage : int { kFloat64 = WRC_STORAGE_FLOAT64, kFloat32 = WRC_STORAGE_FLOAT32 };
 
 /// An open table. Move-only; closes the handle on destruction. Const methods may be called from
 /// several threads at once (the eval family is thread-safe and, unless it throws, allocation-free).
@@ -96,6 +97,11 @@ class Table {
   Interpolation interpolation() const {
     return static_cast<Interpolation>(Checked(wrc_table_interpolation(handle_)));
   }
+  /// What lookups read (see wrc_table_set_storage); not concurrently with evaluations.
+  void set_storage(Storage storage) {
+    Checked(wrc_table_set_storage(handle_, static_cast<int>(storage)));
+  }
+  Storage storage() const { return static_cast<Storage>(Checked(wrc_table_storage(handle_))); }
 
   /// Interpolates all outputs at point (num_axes() values) into out (num_outputs() values).
   /// Returns the flags WRC_FLAG_CLAMPED | WRC_FLAG_STATUS (0 when neither); throws TableError on

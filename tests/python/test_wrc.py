@@ -60,6 +60,7 @@ class CApi:
         lib.wrc_table_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]
         lib.wrc_table_close.argtypes = [ctypes.c_void_p]
         lib.wrc_table_set_interpolation.argtypes = [ctypes.c_void_p, ctypes.c_int]
+        lib.wrc_table_set_storage.argtypes = [ctypes.c_void_p, ctypes.c_int]
         for name in ("wrc_table_eval", "wrc_table_eval_deriv"):
             getattr(lib, name).restype = ctypes.c_int
         lib.wrc_table_eval.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
@@ -219,6 +220,28 @@ class PythonModuleTest(unittest.TestCase):
         self.assertEqual(d.shape, (20000, N_OUTPUTS, 4))
         with self.assertRaises(ValueError):
             t.interpolation = "quadratic"
+
+    def test_float32_storage_is_the_c_apis_and_within_float_rounding(self):
+        t = wrc.Table(self.wheelset_path)
+        self.assertEqual(t.storage, "float64")
+        rng = np.random.default_rng(21)
+        points = random_points(rng, 20000, self.low, self.high)
+        exact = t.eval(points)
+        t.storage = "float32"
+        self.assertEqual(t.storage, "float32")
+        values = t.eval(points)
+        handle = self.c.open(self.wheelset_path)
+        self.assertEqual(self.c.lib.wrc_table_set_storage(handle, 1), 0)
+        expected, _, _ = self.c.eval(handle, points, N_OUTPUTS)
+        self.c.lib.wrc_table_close(handle)
+        self.assertEqual(values.tobytes(), expected.tobytes())
+        # float rounding of the node values (|values| up to ~1e5 here): 2^-24 relative, a few
+        # corners' worth
+        scale = np.abs(exact).max()
+        self.assertLess(np.abs(values - exact).max(), 1e-6 * scale)
+        self.assertGreater(np.abs(values - exact).max(), 0.0)
+        with self.assertRaises(ValueError):
+            t.storage = "float16"
 
     @unittest.skipUnless(os.environ.get("WRC_BENCH"), "a benchmark: set WRC_BENCH=1")
     def test_throughput_multilinear(self):

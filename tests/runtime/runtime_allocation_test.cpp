@@ -144,7 +144,8 @@ TEST(RuntimeAllocation, CounterSeesAllocations) {
   EXPECT_GE(count, WRC_TEST_INTERPOSE_MALLOC ? 4 : 2);
 }
 
-TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
+// Every kind of call on both modes, with the node data read as `storage`.
+void ExpectEvaluationDoesNotAllocate(int storage) {
   wrc::test::ScratchFile scratch("allocation");
   wrc::test::TableContent content;
   content.axes = wrc::test::WheelsetAxes(41);
@@ -160,7 +161,10 @@ TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
   ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &linear), 0) << wrc_last_error();
   ASSERT_EQ(wrc_table_open(scratch.path().c_str(), &cubic), 0) << wrc_last_error();
   ASSERT_EQ(wrc_table_set_interpolation(cubic, WRC_INTERP_CUBIC), 0);
-  const wrc::Table wrapped(scratch.path());
+  ASSERT_EQ(wrc_table_set_storage(linear, storage), 0);
+  ASSERT_EQ(wrc_table_set_storage(cubic, storage), 0);
+  wrc::Table wrapped(scratch.path());
+  wrapped.set_storage(static_cast<wrc::Storage>(storage));
 
   // Points inside, outside (clamped) and NaN (error path), prepared before counting.
   std::mt19937 random(31);
@@ -193,6 +197,14 @@ TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
   for (int errors : results) EXPECT_EQ(errors, 10);  // The NaN points took the error path.
   wrc_table_close(linear);
   wrc_table_close(cubic);
+}
+
+TEST(RuntimeAllocation, EvaluationDoesNotAllocate) {
+  ExpectEvaluationDoesNotAllocate(WRC_STORAGE_FLOAT64);
+}
+
+TEST(RuntimeAllocation, EvaluationFromFloat32StorageDoesNotAllocate) {
+  ExpectEvaluationDoesNotAllocate(WRC_STORAGE_FLOAT32);
 }
 
 // The cubic node data are built when a handle is switched to cubic mode (that call may allocate,
