@@ -56,9 +56,14 @@ constexpr int kMaxOutputs = 64;
 struct Wheel {
   const wrc_table* table = nullptr;
   double mirror = 1.0;
+  int n_axes = 0;
   int axis_quantity[WRC_MAX_AXES] = {};  // per axis
   double axis_first[WRC_MAX_AXES] = {};  // per axis: its range
   double axis_last[WRC_MAX_AXES] = {};
+  double axis_slack[WRC_MAX_AXES] = {};  // per axis: what SnapToRange forgives
+  // The quantities the table fixes (fixed[q] not NaN), for FixedFlag.
+  int n_fixed = 0;
+  int fixed_quantity[kQuantities] = {};
   int output_index[kOutputs] = {};  // -1: not in the table
   // The value the table was made with for each quantity that is not an axis (NaN: unknown, or
   // irrelevant such as z when fz was prescribed).
@@ -140,6 +145,14 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
     if (q == kSpin || q == kOmega) w.fixed[kSpin] = w.fixed[kOmega] = NAN;
     if (q == kYWheel) w.fixed[kY] = NAN;
   }
+  w.n_axes = wrc_table_num_axes(table);
+  for (int a = 0; a < w.n_axes; ++a) {
+    w.axis_slack[a] = 1e-12 * (w.axis_last[a] - w.axis_first[a] + std::fabs(w.axis_first[a]) +
+                               std::fabs(w.axis_last[a]));
+  }
+  for (int q = 0; q < kQuantities; ++q) {
+    if (!std::isnan(w.fixed[q])) w.fixed_quantity[w.n_fixed++] = q;
+  }
   w.fold_lateral = has_axis[kYaw] && !has_axis[kVy] && !has_axis[kVroll];
   w.fold_longitudinal = (has_axis[kSpin] || has_axis[kOmega]) && !has_axis[kVyaw];
   if (wrc_table_num_outputs(table) > kMaxOutputs) {
@@ -195,8 +208,9 @@ void StateQuantities(const wrc_wheelset_state& s, int side, const Wheel& w,
 // WRC_FLAG_FIXED when the state asks for a value the table fixes otherwise. A quantity the
 // caller does not know (NaN fz, mu) asks for nothing.
 int FixedFlag(const Wheel& w, const double (&value)[kQuantities]) {
-  for (int q = 0; q < kQuantities; ++q) {
-    if (std::isnan(w.fixed[q]) || std::isnan(value[q])) continue;
+  for (int i = 0; i < w.n_fixed; ++i) {
+    const int q = w.fixed_quantity[i];
+    if (std::isnan(value[q])) continue;
     const double tolerance = 1e-9 * (1.0 + std::fabs(w.fixed[q]) + std::fabs(value[q]));
     if (std::fabs(value[q] - w.fixed[q]) > tolerance) return WRC_FLAG_FIXED;
   }
@@ -212,8 +226,7 @@ double MirroredOutput(const Wheel& w, const double* out, int k) {
 // A coordinate that lies outside its axis by rounding only (spin recomputed from omega at an
 // end node, say) is taken at the end: it is not a pose the table cannot serve.
 double SnapToRange(const Wheel& w, int a, double x) {
-  const double slack = 1e-12 * (w.axis_last[a] - w.axis_first[a] + std::fabs(w.axis_first[a]) +
-                                std::fabs(w.axis_last[a]));
+  const double slack = w.axis_slack[a];
   if (x < w.axis_first[a] && x >= w.axis_first[a] - slack) return w.axis_first[a];
   if (x > w.axis_last[a] && x <= w.axis_last[a] + slack) return w.axis_last[a];
   return x;
@@ -223,7 +236,7 @@ int EvalWheel(const Wheel& w, const wrc_wheelset_state& s, int side, wrc_wheel_c
   double value[kQuantities];
   StateQuantities(s, side, w, value);
   double point[WRC_MAX_AXES];
-  for (int a = 0; a < wrc_table_num_axes(w.table); ++a) {
+  for (int a = 0; a < w.n_axes; ++a) {
     point[a] = SnapToRange(w, a, value[w.axis_quantity[a]]);
   }
   double out[kMaxOutputs];
