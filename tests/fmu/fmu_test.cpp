@@ -205,6 +205,31 @@ TEST_F(Fmu, CubicInterpolationIsTheRuntimesToo) {
 }
 
 // Start values come from the table: its speed, its wheel load, the solver's rail origins.
+// --left: a table of its own for the left wheel, packed beside the right one. Given the right
+// wheel's table again, the left wheel reads it mirrored, as the one-table FMU does: the same
+// forces to the bit.
+TEST_F(Fmu, PacksATableForTheLeftWheel) {
+  ASSERT_EQ(RunWrcIn(*dir_, "fmu t.h5 --left t.h5 -o two.fmu", 120), 0)
+      << ReadFile(*dir_ / "stderr.txt");
+  wrc::test::Unzip(*dir_ / "two.fmu", *dir_ / "two");
+  EXPECT_TRUE(fs::is_regular_file(*dir_ / "two" / "resources" / "left.wrct"));
+  Fmi3Fmu two(*dir_ / "two");
+  void* a = Start();
+  void* b = two.Instantiate3(&log_, two.token());
+  ASSERT_NE(b, nullptr) << log_.All();
+  EXPECT_EQ(two.enter_initialization(b, false, 0.0, 0.0, false, 0.0), fmi3::kOK);
+  EXPECT_EQ(two.exit_initialization(b), fmi3::kOK) << log_.All();
+  for (const double y : {-0.0015, 0.0004, 0.0019}) {
+    EXPECT_EQ(fmu_->SetFloat64(a, "y", y), fmi3::kOK);
+    EXPECT_EQ(two.SetFloat64(b, "y", y), fmi3::kOK);
+    for (const char* name : {"left.fy", "left.mz", "right.fy", "wheelset.fy"}) {
+      EXPECT_EQ(fmu_->GetFloat64(a, name), two.GetFloat64(b, name)) << name << ' ' << y;
+    }
+  }
+  fmu_->free_instance(a);
+  two.free_instance(b);
+}
+
 TEST_F(Fmu, StartsAtTheTablesOwnState) {
   void* instance = Start();
   EXPECT_DOUBLE_EQ(fmu_->GetFloat64(instance, "velocity"), 2.0);
