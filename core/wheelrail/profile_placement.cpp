@@ -69,4 +69,43 @@ double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double s
   return first;
 }
 
+RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double step) {
+  const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
+  WheelsetPlacement at_zero = pose;
+  at_zero.z = 0.0;
+  const wr::PlacedWheel wheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset,
+                              Kinematics(at_zero));
+  // A reach of a few steps keeps the smallest gap's neighbours located, for the parabola.
+  const auto samples = wr::SearchContact(rail, wheel, step, 4.0 * step).samples;
+  std::size_t k = samples.size();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].valid && (k == samples.size() || samples[i].gap < samples[k].gap)) k = i;
+  }
+  RigidContact contact;
+  if (k == samples.size()) return contact;
+  // The gap's minimum between the samples: the parabola through k − 1, k, k + 1.
+  double s = samples[k].s, gap = samples[k].gap;
+  if (k > 0 && k + 1 < samples.size() && samples[k - 1].valid && samples[k + 1].valid) {
+    const double lo = samples[k - 1].gap, mid = samples[k].gap, hi = samples[k + 1].gap;
+    const double curvature = lo - 2.0 * mid + hi;
+    if (curvature > 0.0) {
+      const double shift = std::clamp(0.5 * (lo - hi) / curvature, -0.5, 0.5);
+      s += shift * (samples[k + 1].s - samples[k].s);
+      gap = mid - 0.25 * (lo - hi) * shift;
+    }
+  }
+  const Eigen::Vector2d p = rail.PositionAt(s);
+  // The wheel touches where it lies `gap` above that rail point (z down).
+  const Eigen::Vector2d on_wheel =
+      wheel.ToWheelProfile(Eigen::Vector3d(samples[k].x, p(0), p(1) - gap));
+  contact.found = true;
+  contact.height = gap;
+  contact.rail_y = p(0);
+  contact.rail_z = p(1);
+  contact.contact_angle = rail.InclinationAt(s);
+  contact.wheel_y = on_wheel(0);
+  contact.rolling_radius = wheel.nominal_radius() + on_wheel(1);
+  return contact;
+}
+
 }  // namespace wrc

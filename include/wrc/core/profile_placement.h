@@ -38,4 +38,21 @@ PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, doubl
 /// not used): the smallest gap at height 0. Infinity when the wheel is never above the rail.
 double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step);
 
+/// Where the wheel first touches the rail as the wheelset is lowered at pose's y, roll and yaw
+/// (pose.z is not used): the rigid contact point of the undeformed profiles.
+struct RigidContact {
+  bool found = false;   ///< False when the wheel is nowhere above the rail.
+  double height = 0.0;  ///< Wheelset z of first touch, mm (z down).
+  double rail_y = 0.0;  ///< The point on the rail, track frame, mm.
+  double rail_z = 0.0;
+  double contact_angle = 0.0;   ///< Rail inclination there, rad (CONTACT's convention).
+  double wheel_y = 0.0;         ///< The point in wheel profile coordinates, mm.
+  double rolling_radius = 0.0;  ///< Wheel radius there, mm.
+};
+
+/// The rigid contact at `pose`, the gap sampled every `step` mm of rail arc length and its
+/// minimum placed between the samples by a parabola. Throws InputError for a profile that
+/// cannot be read.
+RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double step);
+
 }  // namespace wrc
