@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/gsl/error.h"
 #include "core/gsl/integration.h"
 #include "core/gsl/roots.h"
 #include "wrc/core/errors.h"
@@ -119,7 +120,14 @@ double HalfPeriod(const Potential& v, const RollingRadiusDifference& t, double y
   gsl::IntegrationOptions options;
   options.rel_tolerance = 1e-9;  // tan γe to ~1e-9: far below the 3 decimals it is quoted to
   options.max_intervals = 4 * points.size() + 1000;
-  return gsl::IntegrateQagp(f, points, options).value;
+  try {
+    return gsl::IntegrateQagp(f, points, options).value;
+  } catch (const GslError&) {
+    // A Δr with kinks between its samples (a measured profile's) can keep QAGP from proving
+    // 1e-9; 1e-6 is still a thousand times below the three decimals tan γe is quoted to.
+    options.rel_tolerance = 1e-6;
+    return gsl::IntegrateQagp(f, points, options).value;
+  }
 }
 
 }  // namespace
@@ -147,7 +155,13 @@ EquivalentConicity EquivalentConicityAt(const RollingRadiusDifference& dr, doubl
     c.tan_gamma_e = 0.0;
     return c;
   }
-  c.scaled_wavelength = 2.0 * HalfPeriod(v, dr, a, amplitude);
+  try {
+    c.scaled_wavelength = 2.0 * HalfPeriod(v, dr, a, amplitude);
+  } catch (const GslError&) {  // not even 1e-6: no figure rather than a doubtful one
+    c.valid = false;
+    c.y_min = c.y_max = NAN;
+    return c;
+  }
   c.tan_gamma_e = 4.0 * kPi * kPi / (c.scaled_wavelength * c.scaled_wavelength);
   return c;
 }

@@ -105,6 +105,11 @@ RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double
   contact.contact_angle = rail.InclinationAt(s);
   contact.wheel_y = on_wheel(0);
   contact.rolling_radius = wheel.nominal_radius() + on_wheel(1);
+  const ProfileSpline& w = wheel.spline();
+  const double w_first = w.PositionAt(0.0).y, w_last = w.PositionAt(w.length()).y;
+  contact.at_profile_end = s < 2.0 * step || s > rail.length() - 2.0 * step ||
+                           std::fabs(on_wheel(0) - w_first) < 2.0 * step ||
+                           std::fabs(on_wheel(0) - w_last) < 2.0 * step;
   return contact;
 }
 

@@ -82,6 +82,10 @@ void AddExportCommand(CLI::App& app, int* exit_code);
 /// packed with the table (fmu/).
 void AddFmuCommand(CLI::App& app, int* exit_code);
 
+/// Registers `wrc geometry CASE.toml`: the rigid contact geometry of a wheelset over y and its
+/// equivalent conicity (docs/conicity.md).
+void AddGeometryCommand(CLI::App& app, int* exit_code);
+
 /// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 

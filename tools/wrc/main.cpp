@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   wrc::cli::AddUpgradeCommand(app, &exit_code);
   wrc::cli::AddExportCommand(app, &exit_code);
   wrc::cli::AddFmuCommand(app, &exit_code);
+  wrc::cli::AddGeometryCommand(app, &exit_code);
   wrc::cli::AddVerifyCommand(app, &exit_code);
   wrc::cli::AddStudyCommand(app, &exit_code);
   wrc::cli::AddPlotCommand(app, &exit_code);

@@ -20,7 +20,8 @@ struct RollingRadiusDifference {
 
 /// The periodic motion of one amplitude and its equivalent conicity. When the motion of that
 /// amplitude leaves the tabulated range, or Δr does not bring the wheelset back (no periodic
-/// motion), valid is false and the other figures are NaN: a numerical outcome, not an error.
+/// motion), or its period cannot be integrated to 1e-6, valid is false and the other figures are
+/// NaN: a numerical outcome, not an error.
 struct EquivalentConicity {
   double amplitude = 0.0;  ///< ŷ, mm: half the peak-to-peak lateral motion.
   bool valid = false;

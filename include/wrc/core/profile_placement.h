@@ -48,6 +48,9 @@ struct RigidContact {
   double contact_angle = 0.0;   ///< Rail inclination there, rad (CONTACT's convention).
   double wheel_y = 0.0;         ///< The point in wheel profile coordinates, mm.
   double rolling_radius = 0.0;  ///< Wheel radius there, mm.
+  /// The point lies within a sampling step of either profile's end: the profiles end there,
+  /// and the figures are those of their edges, not of a contact the profiles describe.
+  bool at_profile_end = false;
 };
 
 /// The rigid contact at `pose`, the gap sampled every `step` mm of rail arc length and its

@@ -94,6 +94,12 @@ TEST(RigidContact, OfAConeOnACrownGivesDrOfTheCone) {
   for (double amplitude : {1.0, 4.0}) {
     EXPECT_NEAR(wrc::EquivalentConicityAt(dr, amplitude).tan_gamma_e, kTan, 1e-9);
   }
+  EXPECT_FALSE(wrc::RigidContactAt(c, {0.0, 0.0, 0.0, 0.0}, 0.01).at_profile_end);
+  // The crown taken upside down is a trough: the cone rests on its gauge-side end.
+  c.rail.mirror_z = wrc::MirrorZ::kNo;
+  const auto on_edge = wrc::RigidContactAt(c, {0.0, 0.0, 0.0, 0.0}, 0.01);
+  EXPECT_TRUE(on_edge.at_profile_end);
+  EXPECT_NEAR(on_edge.rail_y, 750.0 - 35.0, 0.05);
   std::filesystem::remove_all(dir);
 }
 

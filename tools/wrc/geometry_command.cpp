@@ -1,0 +1,240 @@
+// `wrc geometry CASE.toml`: the rigid contact geometry of a wheelset on its track, what a
+// vehicle engineer looks at before any simulation: over the wheelset's lateral shift y, the
+// rolling-radius difference Δr, the contact angles and the contact points on wheel and rail of
+// both wheels, the contact jumps, and the equivalent conicity per EN 15302 against amplitude
+// (docs/conicity.md). The case's wheel and rail are the right ones; the left wheel is their
+// mirror image unless --left-wheel names a profile of its own. The wheelset is not rolled, as
+// EN 15302 prescribes (each wheel brought into contact on its own).
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tools/wrc/commands.h"
+#include "tools/wrc/gnuplot.h"
+#include "tools/wrc/output_text.h"
+#include "wrc/core/case.h"
+#include "wrc/core/conicity.h"
+#include "wrc/core/errors.h"
+#include "wrc/core/profile_placement.h"
+
+namespace wrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct GeometryOptions {
+  std::string case_path, left_wheel, out;
+  double left_radius = 0.0;  // 0: the case's nominal radius
+  double y_max = 10.0, y_step = 0.1;
+  double step = 0.01;  // rail arc length between gap samples, mm
+  bool json = false;
+};
+
+// A contact point jumps when it moves along the rail by more than this between two shifts one
+// step apart. On a tabulated profile the point also moves in steps of 1–3 mm where wheel and
+// rail are nearly conformal (EN 15302's profile A); a jump between tread and flange, or
+// between two tread regions, spans 10 mm and more.
+constexpr double kJump = 5.0;
+
+struct Row {
+  double y;
+  RigidContact right, left;  // left: its right-side equivalent at −y
+  bool jump = false;
+};
+
+std::vector<Row> Sweep(const Case& right, const Case& left, const GeometryOptions& o) {
+  std::vector<Row> rows;
+  const int n = static_cast<int>(std::round(o.y_max / o.y_step));
+  for (int i = -n; i <= n; ++i) {
+    Row r;
+    r.y = std::round(i * o.y_step * 1e9) / 1e9;  // the step's decimals, not its rounding
+    r.right = RigidContactAt(right, {r.y, 0.0, 0.0, 0.0}, o.step);
+    r.left = RigidContactAt(left, {-r.y, 0.0, 0.0, 0.0}, o.step);
+    if (!r.right.found || !r.left.found) {
+      throw InputError("at y = " + std::to_string(r.y) +
+                       " mm a wheel lies nowhere above its rail: the placement ([track], "
+                       "[wheelset]) or --y-max does not fit the profiles");
+    }
+    if (!rows.empty()) {
+      r.jump = std::fabs(r.right.rail_y - rows.back().right.rail_y) > kJump ||
+               std::fabs(r.left.rail_y - rows.back().left.rail_y) > kJump;
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+RollingRadiusDifference DrOf(const std::vector<Row>& rows) {
+  RollingRadiusDifference dr;
+  for (const Row& r : rows) {
+    dr.y.push_back(r.y);
+    dr.dr.push_back(r.right.rolling_radius - r.left.rolling_radius);
+  }
+  return dr;
+}
+
+// Positions in the track frame as a user reads them: the left wheel's mirrored back (y < 0).
+// Contact angles in each wheel's own sense, positive where its surface rises towards its
+// flange (the tread's cone, about 70° on a flank), so that a symmetric pair differs by 0 at
+// y = 0.
+void WriteGeometry(const fs::path& path, const std::vector<Row>& rows) {
+  OutputText csv(path);
+  csv << "y_mm,dr_mm,r_right_mm,r_left_mm,contact_angle_right_rad,contact_angle_left_rad,"
+         "rail_y_right_mm,rail_y_left_mm,wheel_y_right_mm,wheel_y_left_mm,jump\n";
+  csv.precision(10);
+  for (const Row& r : rows) {
+    csv << r.y << ',' << r.right.rolling_radius - r.left.rolling_radius << ','
+        << r.right.rolling_radius << ',' << r.left.rolling_radius << ',' << -r.right.contact_angle
+        << ',' << -r.left.contact_angle << ',' << r.right.rail_y << ',' << -r.left.rail_y << ','
+        << r.right.wheel_y << ',' << r.left.wheel_y << ',' << (r.jump ? 1 : 0) << '\n';
+  }
+  csv.Commit();
+}
+
+std::vector<EquivalentConicity> Conicity(const RollingRadiusDifference& dr, double y_max) {
+  std::vector<EquivalentConicity> curve;
+  for (int i = 1; i * 0.1 <= y_max + 1e-9; ++i) {
+    const auto c = EquivalentConicityAt(dr, 0.1 * i);
+    if (c.valid) curve.push_back(c);
+  }
+  return curve;
+}
+
+void WriteConicity(const fs::path& path, const std::vector<EquivalentConicity>& curve) {
+  OutputText csv(path);
+  csv << "amplitude_mm,tan_gamma_e,y_min_mm,y_max_mm\n";
+  csv.precision(10);
+  for (const auto& c : curve) {
+    csv << c.amplitude << ',' << c.tan_gamma_e << ',' << c.y_min << ',' << c.y_max << '\n';
+  }
+  csv.Commit();
+}
+
+// The classic panels: Δr(y), the contact angle difference, the contact points on the rail
+// against y, and the equivalent conicity against amplitude.
+void DrawGeometry(const fs::path& out) {
+  const std::string script =
+      "set terminal pngcairo size 1200,900 font ',10'\n"
+      "set output 'geometry.png'\n"
+      "set datafile separator ','\n"
+      "set key autotitle columnhead\n"
+      "set multiplot layout 2,2\n"
+      "set grid\n"
+      "set xlabel 'y, mm'\nset ylabel 'Δr, mm'\nset title 'Rolling-radius difference'\n"
+      "plot 'geometry.csv' using 1:2 with lines notitle\n"
+      "set ylabel 'γ_R − γ_L, rad'\nset title 'Contact angle difference'\n"
+      "plot 'geometry.csv' using 1:($5-$6) with lines notitle\n"
+      "set ylabel 'contact point on the rail, mm (track frame)'\n"
+      "set title 'Contact points (|y|, right and left rail)'\n"
+      "plot 'geometry.csv' using 1:7 with points pt 7 ps 0.3 title 'right', "
+      "'' using 1:(-$8) with points pt 7 ps 0.3 title 'left (mirrored)'\n"
+      "set xlabel 'amplitude ŷ, mm'\nset ylabel 'tan γe'\n"
+      "set title 'Equivalent conicity (EN 15302)'\n"
+      "plot 'conicity.csv' using 1:2 with lines notitle\n"
+      "unset multiplot\n";
+  if (!RunGnuplot(out, "geometry.gp", script)) {
+    std::cerr << "wrc geometry: gnuplot is not installed: geometry.png is not drawn (the CSV "
+                 "files are written)\n";
+  }
+}
+
+double AtAmplitude(const std::vector<EquivalentConicity>& curve, double amplitude) {
+  for (const auto& c : curve) {
+    if (std::fabs(c.amplitude - amplitude) < 1e-9) return c.tan_gamma_e;
+  }
+  return NAN;
+}
+
+nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<EquivalentConicity>& curve) {
+  nlohmann::json j;
+  const double at3 = AtAmplitude(curve, 3.0);
+  j["tan_gamma_e_3mm"] = std::isfinite(at3) ? nlohmann::json(at3) : nlohmann::json(nullptr);
+  j["jumps_y_mm"] = nlohmann::json::array();
+  for (const Row& r : rows) {
+    if (r.jump) j["jumps_y_mm"].push_back(r.y);
+  }
+  j["conicity"] = nlohmann::json::array();
+  for (const auto& c : curve) {
+    j["conicity"].push_back({{"amplitude_mm", c.amplitude}, {"tan_gamma_e", c.tan_gamma_e}});
+  }
+  j["roll"] = "not solved (EN 15302)";
+  return j;
+}
+
+void RunGeometry(const GeometryOptions& o) {
+  const Case right = LoadCase(o.case_path);
+  Case left = right;
+  if (!o.left_wheel.empty()) {
+    left.wheel = ProfileSource{};
+    left.wheel.path = left.wheel.path_as_written = o.left_wheel;
+  }
+  if (o.left_radius > 0.0) left.wheelset.nominal_radius = o.left_radius;
+  const std::vector<Row> rows = Sweep(right, left, o);
+  std::vector<double> at_end;
+  for (const Row& r : rows) {
+    if (r.right.at_profile_end || r.left.at_profile_end) at_end.push_back(r.y);
+  }
+  if (!at_end.empty()) {
+    std::cerr << "wrc geometry: warning: from y = " << at_end.front() << " to " << at_end.back()
+              << " mm (" << at_end.size()
+              << " shifts) a contact lies at the end of a profile: those rows describe the "
+                 "profiles' edges, not a contact; a smaller --y-max stays within them\n";
+  }
+  const std::vector<EquivalentConicity> curve = Conicity(DrOf(rows), o.y_max);
+  const nlohmann::json summary = Summary(rows, curve);
+  if (!o.out.empty()) {
+    fs::create_directories(o.out);
+    WriteGeometry(fs::path(o.out) / "geometry.csv", rows);
+    WriteConicity(fs::path(o.out) / "conicity.csv", curve);
+    DrawGeometry(o.out);
+  }
+  if (o.json) {
+    std::cout << summary.dump(2) << '\n';
+    return;
+  }
+  const double at3 = AtAmplitude(curve, 3.0);
+  std::cout << "equivalent conicity (EN 15302, roll not solved): tan γe(3 mm) = "
+            << (std::isfinite(at3) ? std::to_string(at3) : std::string("n/a")) << '\n'
+            << "contact jumps at y = " << summary["jumps_y_mm"].dump() << " mm\n";
+}
+
+}  // namespace
+
+void AddGeometryCommand(CLI::App& app, int* exit_code) {
+  auto* cmd = app.add_subcommand(
+      "geometry",
+      "Rigid contact geometry of a wheelset: Δr, contact angles and points over y, "
+      "and the equivalent conicity (EN 15302)");
+  auto o = std::make_shared<GeometryOptions>();
+  cmd->add_option("CASE", o->case_path, "Wheel-rail case: the right wheel and rail")->required();
+  cmd->add_option("--left-wheel", o->left_wheel,
+                  "Profile of the left wheel (default: the case's wheel, mirrored)");
+  cmd->add_option("--left-radius", o->left_radius,
+                  "Nominal radius of the left wheel, mm (default: the case's)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--y-max", o->y_max, "Lateral shifts from -Y to Y, mm")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 50.0));
+  cmd->add_option("--y-step", o->y_step, "Step in y, mm")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 5.0));
+  cmd->add_option("--out", o->out, "Output directory (geometry.csv, conicity.csv, geometry.png)");
+  cmd->add_flag("--json", o->json, "The summary as JSON");
+  cmd->callback([=]() {
+    try {
+      RunGeometry(*o);
+      FinishStandardOutput();
+      *exit_code = kExitOk;
+    } catch (const std::exception& e) {
+      std::cerr << "wrc geometry: error: " << e.what() << '\n';
+      *exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace wrc::cli
