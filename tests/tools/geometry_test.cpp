@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/number_table.h"
 #include "tests/tools/tool_test_util.h"
 
 namespace {
@@ -45,19 +46,8 @@ class Geometry : public ::testing::Test {
   fs::path dir_;
 };
 
-// Rows of a CSV after its header.
 std::vector<std::vector<double>> Csv(const fs::path& path) {
-  std::istringstream text(ReadFile(path));
-  std::vector<std::vector<double>> rows;
-  std::string line;
-  std::getline(text, line);
-  while (std::getline(text, line)) {
-    std::vector<double> row;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
+  return wrc::test_support::NumberRows(path.string(), ',');
 }
 
 TEST_F(Geometry, GivesEN15302sConicityAndNamesTheJumps) {
@@ -79,16 +69,7 @@ TEST_F(Geometry, GivesEN15302sConicityAndNamesTheJumps) {
   EXPECT_NEAR(centre[4], centre[5], 1e-12);        // equal contact angles
   EXPECT_NEAR(centre[4], std::atan(0.025), 2e-3);  // on the 1:40 tread
   // tan γe against the standard's reference, every 0.1 mm from 1 mm (its table's amplitudes).
-  std::istringstream reference(
-      ReadFile(kSource / "tests" / "data" / "en15302" / "tables" / "conicity_E3.csv"));
-  std::vector<std::vector<double>> bands;
-  for (std::string line; std::getline(reference, line);) {
-    if (line.empty() || line[0] == '#' || line[0] == 'a') continue;
-    std::vector<double> row;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-    bands.push_back(row);
-  }
+  const auto bands = Csv(kSource / "tests" / "data" / "en15302" / "tables" / "conicity_E3.csv");
   int compared = 0;
   for (const auto& c : Csv(dir_ / "out" / "conicity.csv")) {
     for (const auto& band : bands) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/gsl/elliptic.h"
+#include "tests/support/number_table.h"
 #include "wrc/core/conicity.h"
 #include "wrc/core/errors.h"
 
@@ -88,21 +89,7 @@ TEST(EquivalentConicity, IsNoneWhereTheMotionLeavesTheTableOrIsNotRestored) {
 const std::string kTables = std::string(WRC_TEST_DATA_DIR) + "/en15302/tables/";
 
 std::vector<std::vector<double>> Rows(const std::string& path, char separator) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) {
-      continue;
-    }
-    std::vector<double> row;
-    std::istringstream fields(line);
-    for (std::string field; std::getline(fields, field, separator);) {
-      if (!field.empty()) row.push_back(std::stod(field));
-    }
-    rows.push_back(row);
-  }
-  return rows;
+  return wrc::test_support::NumberRows(path, separator);
 }
 
 RollingRadiusDifference BenchmarkDr(const std::string& name) {
