@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "core/gsl/roots.h"
 #include "core/wheelrail/contact_search.h"
 #include "core/wheelrail/geometry.h"
 #include "wrc/core/profile.h"
@@ -111,6 +112,20 @@ RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double
                            std::fabs(on_wheel(0) - w_first) < 2.0 * step ||
                            std::fabs(on_wheel(0) - w_last) < 2.0 * step;
   return contact;
+}
+
+double WheelsetRollAt(const Case& right, const Case& left, double y, double step) {
+  const auto height_difference = [&](double roll) {
+    return RigidContactAt(right, {y, 0.0, roll, 0.0}, step).height -
+           RigidContactAt(left, {-y, 0.0, -roll, 0.0}, step).height;
+  };
+  // ±50 mrad: ten times the roll of a wheelset on its flanges (a 1500 mm base, 15 mm of Δr).
+  constexpr double kMaxRoll = 0.05;
+  const double lo = height_difference(-kMaxRoll), hi = height_difference(kMaxRoll);
+  if (!std::isfinite(lo) || !std::isfinite(hi) || (lo > 0.0) == (hi > 0.0)) return NAN;
+  gsl::RootOptions options;
+  options.abs_tolerance = 1e-9;  // rad: 1.5 µm across the wheelset, far below the profiles'
+  return gsl::FindRootBrent(height_difference, -kMaxRoll, kMaxRoll, options).root;
 }
 
 }  // namespace wrc

@@ -99,6 +99,16 @@ TEST_F(Geometry, TakesALeftWheelOfItsOwnAndRefusesWhatDoesNotFit) {
       << ReadFile(dir_ / "stderr.txt");
   const auto geometry = Csv(dir_ / "out" / "geometry.csv");
   EXPECT_GT(std::fabs(geometry[30][1]), 1e-3);  // y = 0
+  // The roll solved: odd in y, and the output says which.
+  ASSERT_EQ(
+      RunWrcIn(dir_, "geometry e3.toml --y-max 3 --y-step 0.5 --roll solved --out rolled", 300), 0)
+      << ReadFile(dir_ / "stderr.txt");
+  EXPECT_NE(ReadFile(dir_ / "stdout.txt").find("wheelset roll: solved"), std::string::npos);
+  const auto rolled = Csv(dir_ / "rolled" / "geometry.csv");
+  ASSERT_EQ(rolled.size(), 13u);
+  EXPECT_NEAR(rolled[0][11], -rolled[12][11], 1e-8);
+  EXPECT_NE(rolled[0][11], 0.0);
+  EXPECT_EQ(RunWrcIn(dir_, "geometry e3.toml --roll sometimes", 60), 2);
   EXPECT_EQ(RunWrcIn(dir_, "geometry e3.toml --y-max 6", 300), 0);
   EXPECT_EQ(ReadFile(dir_ / "stderr.txt"), "");  // every contact within the profiles
   EXPECT_EQ(RunWrcIn(dir_, "geometry missing.toml", 60), 2);

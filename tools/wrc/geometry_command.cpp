@@ -3,8 +3,9 @@
 // rolling-radius difference Δr, the contact angles and the contact points on wheel and rail of
 // both wheels, the contact jumps, and the equivalent conicity per EN 15302 against amplitude
 // (docs/conicity.md). The case's wheel and rail are the right ones; the left wheel is their
-// mirror image unless --left-wheel names a profile of its own. The wheelset is not rolled, as
-// EN 15302 prescribes (each wheel brought into contact on its own).
+// mirror image unless --left-wheel names a profile of its own. By default the wheelset is not
+// rolled, as EN 15302 prescribes (each wheel brought into contact on its own); `--roll solved`
+// rolls it until both wheels touch together.
 
 #include <cmath>
 #include <filesystem>
@@ -33,6 +34,7 @@ struct GeometryOptions {
   double y_max = 10.0, y_step = 0.1;
   double step = 0.01;  // rail arc length between gap samples, mm
   bool json = false;
+  std::string roll = "none";  // or "solved"
 };
 
 // A contact point jumps when it moves along the rail by more than this between two shifts one
@@ -43,6 +45,7 @@ constexpr double kJump = 5.0;
 
 struct Row {
   double y;
+  double roll = 0.0;         // rad
   RigidContact right, left;  // left: its right-side equivalent at −y
   bool jump = false;
 };
@@ -53,8 +56,15 @@ std::vector<Row> Sweep(const Case& right, const Case& left, const GeometryOption
   for (int i = -n; i <= n; ++i) {
     Row r;
     r.y = std::round(i * o.y_step * 1e9) / 1e9;  // the step's decimals, not its rounding
-    r.right = RigidContactAt(right, {r.y, 0.0, 0.0, 0.0}, o.step);
-    r.left = RigidContactAt(left, {-r.y, 0.0, 0.0, 0.0}, o.step);
+    if (o.roll == "solved") {
+      r.roll = WheelsetRollAt(right, left, r.y, o.step);
+      if (!std::isfinite(r.roll)) {
+        throw InputError("at y = " + std::to_string(r.y) +
+                         " mm no roll within ±50 mrad brings both wheels down together");
+      }
+    }
+    r.right = RigidContactAt(right, {r.y, 0.0, r.roll, 0.0}, o.step);
+    r.left = RigidContactAt(left, {-r.y, 0.0, -r.roll, 0.0}, o.step);
     if (!r.right.found || !r.left.found) {
       throw InputError("at y = " + std::to_string(r.y) +
                        " mm a wheel lies nowhere above its rail: the placement ([track], "
@@ -85,13 +95,14 @@ RollingRadiusDifference DrOf(const std::vector<Row>& rows) {
 void WriteGeometry(const fs::path& path, const std::vector<Row>& rows) {
   OutputText csv(path);
   csv << "y_mm,dr_mm,r_right_mm,r_left_mm,contact_angle_right_rad,contact_angle_left_rad,"
-         "rail_y_right_mm,rail_y_left_mm,wheel_y_right_mm,wheel_y_left_mm,jump\n";
+         "rail_y_right_mm,rail_y_left_mm,wheel_y_right_mm,wheel_y_left_mm,jump,roll_rad\n";
   csv.precision(10);
   for (const Row& r : rows) {
     csv << r.y << ',' << r.right.rolling_radius - r.left.rolling_radius << ','
         << r.right.rolling_radius << ',' << r.left.rolling_radius << ',' << -r.right.contact_angle
         << ',' << -r.left.contact_angle << ',' << r.right.rail_y << ',' << -r.left.rail_y << ','
-        << r.right.wheel_y << ',' << r.left.wheel_y << ',' << (r.jump ? 1 : 0) << '\n';
+        << r.right.wheel_y << ',' << r.left.wheel_y << ',' << (r.jump ? 1 : 0) << ',' << r.roll
+        << '\n';
   }
   csv.Commit();
 }
@@ -150,7 +161,8 @@ double AtAmplitude(const std::vector<EquivalentConicity>& curve, double amplitud
   return NAN;
 }
 
-nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<EquivalentConicity>& curve) {
+nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<EquivalentConicity>& curve,
+                       const std::string& roll) {
   nlohmann::json j;
   const double at3 = AtAmplitude(curve, 3.0);
   j["tan_gamma_e_3mm"] = std::isfinite(at3) ? nlohmann::json(at3) : nlohmann::json(nullptr);
@@ -162,7 +174,7 @@ nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<Equivalen
   for (const auto& c : curve) {
     j["conicity"].push_back({{"amplitude_mm", c.amplitude}, {"tan_gamma_e", c.tan_gamma_e}});
   }
-  j["roll"] = "not solved (EN 15302)";
+  j["roll"] = roll == "solved" ? "solved" : "none (EN 15302)";
   return j;
 }
 
@@ -186,7 +198,7 @@ void RunGeometry(const GeometryOptions& o) {
                  "profiles' edges, not a contact; a smaller --y-max stays within them\n";
   }
   const std::vector<EquivalentConicity> curve = Conicity(DrOf(rows), o.y_max);
-  const nlohmann::json summary = Summary(rows, curve);
+  const nlohmann::json summary = Summary(rows, curve, o.roll);
   if (!o.out.empty()) {
     fs::create_directories(o.out);
     WriteGeometry(fs::path(o.out) / "geometry.csv", rows);
@@ -198,7 +210,8 @@ void RunGeometry(const GeometryOptions& o) {
     return;
   }
   const double at3 = AtAmplitude(curve, 3.0);
-  std::cout << "equivalent conicity (EN 15302, roll not solved): tan γe(3 mm) = "
+  std::cout << "wheelset roll: " << summary["roll"].get<std::string>() << '\n'
+            << "equivalent conicity (EN 15302): tan γe(3 mm) = "
             << (std::isfinite(at3) ? std::to_string(at3) : std::string("n/a")) << '\n'
             << "contact jumps at y = " << summary["jumps_y_mm"].dump() << " mm\n";
 }
@@ -224,6 +237,11 @@ void AddGeometryCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(0.001, 5.0));
   cmd->add_option("--out", o->out, "Output directory (geometry.csv, conicity.csv, geometry.png)");
+  cmd->add_option("--roll", o->roll,
+                  "none: each wheel touches its rail on its own (EN 15302); solved: the wheelset "
+                  "rolls until both touch together")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "solved"}));
   cmd->add_flag("--json", o->json, "The summary as JSON");
   cmd->callback([=]() {
     try {

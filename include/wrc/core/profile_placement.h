@@ -58,4 +58,10 @@ struct RigidContact {
 /// cannot be read.
 RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double step);
 
+/// The wheelset roll at lateral shift y at which both wheels touch their rails together, the
+/// right wheel from `right`, the left from `left` as its right-side equivalent (at −y, −roll):
+/// the first-touch heights equal, found by GSL's Brent solver to 1e-9 rad within ±50 mrad.
+/// NaN when no roll in that range brings both wheels down together.
+double WheelsetRollAt(const Case& right, const Case& left, double y, double step);
+
 }  // namespace wrc

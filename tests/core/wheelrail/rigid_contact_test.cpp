@@ -104,6 +104,24 @@ TEST(RigidContact, OfAConeOnACrownGivesDrOfTheCone) {
   std::filesystem::remove_all(dir);
 }
 
+// With the roll solved both wheels touch together: equal first-touch heights. The pair E1 is
+// symmetric, so the roll is 0 at y = 0 and odd in y; on the treads it is a fraction of a
+// milliradian (Δr over the 1500 mm base), in flange contact several.
+TEST(RigidContact, WheelsetRollBringsBothWheelsDownTogether) {
+  const wrc::Case right = Wheel("A", 460.0), left = Wheel("A", 460.0);
+  EXPECT_NEAR(wrc::WheelsetRollAt(right, left, 0.0, 0.01), 0.0, 1e-8);
+  for (const double y : {3.0, 6.5}) {
+    const double roll = wrc::WheelsetRollAt(right, left, y, 0.01);
+    ASSERT_TRUE(std::isfinite(roll)) << y;
+    EXPECT_NEAR(wrc::WheelsetRollAt(right, left, -y, 0.01), -roll, 1e-8) << y;
+    const double h_right = wrc::RigidContactAt(right, {y, 0.0, roll, 0.0}, 0.01).height;
+    const double h_left = wrc::RigidContactAt(left, {-y, 0.0, -roll, 0.0}, 0.01).height;
+    EXPECT_NEAR(h_right, h_left, 1e-6) << y;
+    EXPECT_LT(std::fabs(roll), y < 5.0 ? 1e-3 : 2e-2) << y;
+    EXPECT_GT(std::fabs(roll), 1e-6) << y;
+  }
+}
+
 std::vector<std::vector<double>> Rows(const std::string& path, char separator) {
   return wrc::test_support::NumberRows(path, separator);
 }
