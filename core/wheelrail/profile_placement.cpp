@@ -57,12 +57,29 @@ PlacedProfiles PlaceProfiles(const Case& c, const WheelsetPlacement& pose, doubl
   return placed;
 }
 
-double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step) {
-  const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
+namespace {
+
+// The wheel at pose's y, roll and yaw with the wheelset at height 0, where first-touch heights
+// are measured from.
+wr::PlacedWheel WheelAtZeroHeight(const Case& c, const WheelsetPlacement& pose) {
   WheelsetPlacement at_zero = pose;
   at_zero.z = 0.0;
-  const wr::PlacedWheel wheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset,
-                              Kinematics(at_zero));
+  return wr::PlacedWheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset, Kinematics(at_zero));
+}
+
+// The case with its profiles read and splined, so that repeated placements do not read them
+// again (a case built in code carries none).
+Case WithSplines(Case c) {
+  c.rail.spline = SplineOf(c.rail, ProfileKind::kRail);
+  c.wheel.spline = SplineOf(c.wheel, ProfileKind::kWheel);
+  return c;
+}
+
+}  // namespace
+
+double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double step) {
+  const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
+  const wr::PlacedWheel wheel = WheelAtZeroHeight(c, pose);
   double first = std::numeric_limits<double>::infinity();
   for (const wr::LocusSample& s : wr::SearchContact(rail, wheel, step, 0.0).samples) {
     if (s.valid) first = std::min(first, s.gap);
@@ -72,10 +89,7 @@ double FirstContactHeight(const Case& c, const WheelsetPlacement& pose, double s
 
 RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double step) {
   const wr::PlacedRail rail(SplineOf(c.rail, ProfileKind::kRail), c.track);
-  WheelsetPlacement at_zero = pose;
-  at_zero.z = 0.0;
-  const wr::PlacedWheel wheel(SplineOf(c.wheel, ProfileKind::kWheel), c.wheelset,
-                              Kinematics(at_zero));
+  const wr::PlacedWheel wheel = WheelAtZeroHeight(c, pose);
   // A reach of a few steps keeps the smallest gap's neighbours located, for the parabola.
   const auto samples = wr::SearchContact(rail, wheel, step, 4.0 * step).samples;
   std::size_t k = samples.size();
@@ -114,7 +128,8 @@ RigidContact RigidContactAt(const Case& c, const WheelsetPlacement& pose, double
   return contact;
 }
 
-double WheelsetRollAt(const Case& right, const Case& left, double y, double step) {
+double WheelsetRollAt(const Case& right_case, const Case& left_case, double y, double step) {
+  const Case right = WithSplines(right_case), left = WithSplines(left_case);
   const auto height_difference = [&](double roll) {
     return RigidContactAt(right, {y, 0.0, roll, 0.0}, step).height -
            RigidContactAt(left, {-y, 0.0, -roll, 0.0}, step).height;

@@ -21,6 +21,7 @@
 #include "wrc/core/case.h"
 #include "wrc/core/conicity.h"
 #include "wrc/core/errors.h"
+#include "wrc/core/profile.h"
 #include "wrc/core/profile_placement.h"
 
 namespace wrc::cli {
@@ -184,6 +185,8 @@ void RunGeometry(const GeometryOptions& o) {
   if (!o.left_wheel.empty()) {
     left.wheel = ProfileSource{};
     left.wheel.path = left.wheel.path_as_written = o.left_wheel;
+    // Read once, as LoadCase read the case's own: every shift places it again.
+    left.wheel.spline = SplineOf(left.wheel, ProfileKind::kWheel);
   }
   if (o.left_radius > 0.0) left.wheelset.nominal_radius = o.left_radius;
   const std::vector<Row> rows = Sweep(right, left, o);

@@ -20,6 +20,7 @@
 #include "tests/support/number_table.h"
 #include "wrc/core/case.h"
 #include "wrc/core/conicity.h"
+#include "wrc/core/profile.h"
 #include "wrc/core/profile_placement.h"
 
 namespace {
@@ -42,6 +43,9 @@ wrc::Case Wheel(const std::string& profile, double nominal_radius) {
   c.wheelset.flange_back_distance = 1360.0;
   c.wheelset.flange_back_position = -70.0;
   c.wheelset.nominal_radius = nominal_radius;
+  // Read once, as LoadCase does: each case is placed at hundreds of shifts.
+  c.rail.spline = wrc::SplineOf(c.rail, wrc::ProfileKind::kRail);
+  c.wheel.spline = wrc::SplineOf(c.wheel, wrc::ProfileKind::kWheel);
   return c;
 }
 
@@ -79,6 +83,7 @@ TEST(RigidContact, OfAConeOnACrownGivesDrOfTheCone) {
   wrc::Case c = Wheel("A", 460.0);
   c.rail.path = dir / "crown.csv";
   c.wheel.path = dir / "cone.csv";
+  c.rail.spline = c.wheel.spline = nullptr;                 // read from the paths above
   c.rail.mirror_z = c.wheel.mirror_z = wrc::MirrorZ::kYes;  // z up; no side faces to tell
   wrc::RollingRadiusDifference dr;
   for (int i = -50; i <= 50; ++i) {
