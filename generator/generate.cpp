@@ -556,8 +556,12 @@ GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options
   RequireNotAnInput(options.output, {scene.base.rail.path, scene.base.wheel.path});
   std::unique_ptr<Cluster> cluster;
   if (options.mpi == MpiMode::kAuto) cluster = gen::JoinClusterIfLaunched();
-  if (scene.refine) return gen::RefineTable(scene, options, cluster.get());
-  return gen::GenerateGrid(scene, options, cluster.get(), gen::GridHooks{});
+  const double cpu_start = gen::ProcessCpuSeconds();
+  GenerateSummary summary =
+      scene.refine ? gen::RefineTable(scene, options, cluster.get())
+                   : gen::GenerateGrid(scene, options, cluster.get(), gen::GridHooks{});
+  summary.cpu_seconds = gen::ProcessCpuSeconds() - cpu_start;
+  return summary;
 }
 
 }  // namespace wrc

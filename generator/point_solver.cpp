@@ -112,7 +112,8 @@ std::string JoinWarnings(const std::vector<std::string>& warnings) {
 }
 
 // One solve of the point from the given start (NaN: the solver's own cold start).
-PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indices, double z_guess) {
+PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indices, double z_guess,
+                      WheelRailCache* cache) {
   PointResult point;
   try {
     Case c = CaseAtIndex(scene, indices);
@@ -121,6 +122,7 @@ PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indice
     c.source_name = std::filesystem::path(c.source_name).filename().string();
     WheelRailOptions options;
     options.z_guess = z_guess;
+    options.cache = cache;
     const WheelRailResult result = SolveWheelRail(c, options);
     point.status = StatusOf(result.status);
     point.values = SceneOutputValues(scene, result, point.status);
@@ -156,16 +158,16 @@ bool Failed(const PointResult& point) {
 }  // namespace
 
 PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
-                            double z_guess) {
+                            double z_guess, WheelRailCache* cache) {
   const auto start = std::chrono::steady_clock::now();
-  PointResult point = SolveOnce(scene, indices, z_guess);
+  PointResult point = SolveOnce(scene, indices, z_guess, cache);
   // A warm start from the neighbouring point can lead the vertical force iteration astray
   // where the contact changes between the two (a patch appearing at the flange): such a point
   // is solved once more from the solver's own cold start, and then stored exactly as a cold
   // solve. Bad input fails the same way again and keeps its reason (once); a different reason
   // from the warm start is kept after it.
   if (Failed(point) && std::isfinite(z_guess)) {
-    PointResult cold = SolveOnce(scene, indices, kNaN);
+    PointResult cold = SolveOnce(scene, indices, kNaN, cache);
     if (Failed(cold) && cold.message != point.message) {
       cold.message +=
           " (from the warm start z = " + FormatNumber(z_guess) + " mm: " + point.message + ")";

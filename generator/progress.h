@@ -35,4 +35,8 @@ class ProgressReporter {
   bool drawn_ = false;
 };
 
+/// CPU time (user and system, all threads) this process has used so far, in seconds: what a
+/// table costs, as against the wall time, which depends on the cores and their other work.
+double ProcessCpuSeconds();
+
 }  // namespace wrc::gen

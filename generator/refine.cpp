@@ -56,8 +56,21 @@ constexpr double kDefaultMinStepFraction = 1.0 / 2048.0;
 // pay little wait until the better ones are within target instead of taking the budget early
 // (every split is final). Doubling keeps the passes few: about log2(budget / start) of them.
 constexpr double kMaxGrowthPerPass = 2.0;
-// Points drawn over the whole state space after the last pass to estimate the final error.
-constexpr int kCheckPoints = 400;
+// With the quantile stop, a pass grows the table by what the error's fall over the last pass
+// predicts it needs to meet the target, times this margin (the fall is measured, not known),
+// and by at least kMinGrowthPerPass: the last pass then does not double a table that needed a
+// third more.
+constexpr double kGrowthMargin = 1.2;
+constexpr double kMinGrowthPerPass = 1.1;
+// Halving an interval divides a smooth function's linear-interpolation error by four.
+constexpr double kSmoothSplitGain = 4.0;
+// Exact solves at uniformly random states, the same every pass (solved once), that judge each
+// pass against the stop rule and give the final estimate. With 1000 of them the 95 % quantile's
+// 90 % upper bound (QuantileBound) lies about nine ranks above the sample's own 95 % quantile.
+constexpr int kCheckPoints = 1000;
+// One-sided normal quantile of the stop rule's confidence (90 %) that the share of states
+// within the target is at least the asked quantile.
+constexpr double kStopConfidenceZ = 1.2816;
 // The score of an interval whose midpoint fails to solve while its ends solve (see
 // ScoreIntervals), in units of the target.
 constexpr double kFailedMidpointScore = 1.5;
@@ -175,12 +188,18 @@ std::string SceneIdentity(const Scene& scene) {
 struct PassRecord {
   std::size_t points = 0, new_points = 0, samples = 0, above_target = 0;
   double worst = 0.0;
+  /// The error at the random check states over the grid of this pass (units of the target):
+  /// the asked quantile and its upper confidence bound, which the stop rule reads.
+  double quantile_error = kNaN, quantile_bound = kNaN;
+  /// CPU seconds of this process from the start of the run (or of its resume) to the end of
+  /// this pass's decision.
+  double cpu_seconds = kNaN;
 };
 
 void WritePasses(const fs::path& work, const std::string& identity, const std::vector<Axes>& passes,
                  const std::vector<PassRecord>& records) {
   std::ostringstream text;
-  text << "wrc-refine 1 " << identity << "\n";
+  text << "wrc-refine 2 " << identity << "\n";
   for (std::size_t p = 0; p < passes.size(); ++p) {
     text << "pass " << p << "\n";
     for (const SceneAxis& axis : passes[p]) {
@@ -191,7 +210,8 @@ void WritePasses(const fs::path& work, const std::string& identity, const std::v
     if (p < records.size()) {
       const PassRecord& r = records[p];
       text << "record " << r.points << " " << r.new_points << " " << r.samples << " "
-           << r.above_target << " " << HexDouble(r.worst) << "\n";
+           << r.above_target << " " << HexDouble(r.worst) << " " << HexDouble(r.quantile_error)
+           << " " << HexDouble(r.quantile_bound) << " " << HexDouble(r.cpu_seconds) << "\n";
     }
   }
   text << "end\n";
@@ -214,7 +234,9 @@ std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity, 
                       " to start the refinement over");
   };
   std::string magic, version, stored_identity;
-  if (!(in >> magic >> version >> stored_identity) || magic != "wrc-refine" || version != "1") {
+  // Version 1 (records without the check's quantile and the CPU time) is still read.
+  if (!(in >> magic >> version >> stored_identity) || magic != "wrc-refine" ||
+      (version != "1" && version != "2")) {
     throw damaged("not a refinement state file");
   }
   if (stored_identity != identity) {
@@ -227,11 +249,17 @@ std::vector<Axes> ReadPasses(const fs::path& work, const std::string& identity, 
     if (word == "end") return passes;
     if (word == "record") {
       PassRecord r;
-      std::string worst;
-      if (!(in >> r.points >> r.new_points >> r.samples >> r.above_target >> worst)) {
+      std::string worst, quantile, bound, cpu;
+      if (!(in >> r.points >> r.new_points >> r.samples >> r.above_target >> worst) ||
+          (version == "2" && !(in >> quantile >> bound >> cpu))) {
         throw damaged("damaged");
       }
       r.worst = std::strtod(worst.c_str(), nullptr);
+      if (version == "2") {
+        r.quantile_error = std::strtod(quantile.c_str(), nullptr);
+        r.quantile_bound = std::strtod(bound.c_str(), nullptr);
+        r.cpu_seconds = std::strtod(cpu.c_str(), nullptr);
+      }
       records->push_back(r);
       continue;
     }
@@ -343,6 +371,7 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
   std::mutex mutex;
   std::atomic<std::size_t> next{0}, computed{0};
   const auto work = [&]() {
+    WheelRailCache cache;  // random points rarely share a pose, but always the placement check
     try {
       for (std::size_t i = next++; i < points.size(); i = next++) {
         if (done[i]) continue;
@@ -350,7 +379,7 @@ SampleRun SolvePoints(const Scene& scene, const std::vector<std::vector<double>>
         Scene at = scene;
         for (std::size_t a = 0; a < at.axes.size(); ++a) at.axes[a].values = {points[i][a]};
         PointResult result =
-            SolveScenePoint(at, std::vector<std::size_t>(at.axes.size(), 0), z_guess[i]);
+            SolveScenePoint(at, std::vector<std::size_t>(at.axes.size(), 0), z_guess[i], &cache);
         const std::string record = EncodeRecord(i, result);
         std::lock_guard<std::mutex> lock(mutex);
         journal->Append(record);
@@ -438,19 +467,29 @@ bool Usable(PointStatus status) {
   return status == PointStatus::kOk || status == PointStatus::kNoContact;
 }
 
-// Largest error of `estimate` against `exact` over the refined outputs, in units of their
-// targets (1 = exactly on target). NaN when nothing could be compared.
-double NormalisedError(const ErrorModel& model, double load, const std::vector<double>& exact,
-                       const std::vector<double>& estimate) {
-  double worst = kNaN;
+// The error of `estimate` against `exact` in each refined output (model.outputs order), in
+// units of its target (1 = exactly on target); NaN where it cannot be compared.
+std::vector<double> NormalisedErrors(const ErrorModel& model, double load,
+                                     const std::vector<double>& exact,
+                                     const std::vector<double>& estimate) {
+  std::vector<double> errors(model.outputs.size(), kNaN);
   for (std::size_t i = 0; i < model.outputs.size(); ++i) {
     const std::size_t k = model.outputs[i];
     if (!std::isfinite(exact[k]) || !std::isfinite(estimate[k])) continue;
     const double tolerance =
         std::isnan(model.absolute[i]) ? model.load_fraction * load : model.absolute[i];
     if (!(tolerance > 0.0)) continue;  // no load (no contact anywhere): forces are exactly 0
-    const double e = std::fabs(exact[k] - estimate[k]) / tolerance;
-    worst = std::isnan(worst) ? e : std::max(worst, e);
+    errors[i] = std::fabs(exact[k] - estimate[k]) / tolerance;
+  }
+  return errors;
+}
+
+// The largest of NormalisedErrors(); NaN when nothing could be compared.
+double NormalisedError(const ErrorModel& model, double load, const std::vector<double>& exact,
+                       const std::vector<double>& estimate) {
+  double worst = kNaN;
+  for (const double e : NormalisedErrors(model, load, exact, estimate)) {
+    if (!std::isnan(e)) worst = std::isnan(worst) ? e : std::max(worst, e);
   }
   return worst;
 }
@@ -459,11 +498,24 @@ struct IntervalScore {
   double max_error = 0.0;       ///< In units of the target.
   double sum_of_squares = 0.0;  ///< Of the sampled errors, in units of the target.
   int samples = 0;
+  /// Samples above the target, and of those the ones above kSmoothSplitGain × target.
+  int above = 0, far_above = 0;
   double MeanSquare() const { return samples > 0 ? sum_of_squares / samples : 0.0; }
+  /// The share of the interval's samples a split is expected to bring within the target: a
+  /// smooth error falls by kSmoothSplitGain when the interval is halved, so those up to that
+  /// factor above the target come within it; further above lies a jump (or a far coarser
+  /// interval), whose band a split halves.
+  double ShareMended() const {
+    if (samples == 0) return 0.0;
+    return (static_cast<double>(above - far_above) + 0.5 * static_cast<double>(far_above)) /
+           static_cast<double>(samples);
+  }
   void Add(double error) {
     max_error = std::max(max_error, error);
     sum_of_squares += error * error;
     ++samples;
+    above += error > 1.0 ? 1 : 0;
+    far_above += error > kSmoothSplitGain ? 1 : 0;
   }
 };
 
@@ -555,8 +607,14 @@ struct Split {
 // sample of the y intervals it crosses but in few samples of a yaw interval, and splitting yaw
 // there buys little. Ranking by score alone, or by score × width, starves narrow intervals
 // around such a rise, which then dominate the rms of a uniform verification.
+//
+// With a quantile stop (quantile < 1) the aim is the share of the state space above target,
+// not the mean square: an interval's gain is its ShareMended() × relative width, so that the
+// few huge samples of a jump, which every axis' intervals see where it moves with them (a fz or
+// roll interval at a flange node), do not buy whole hyperplanes that leave the jump as it was.
 Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScore>>& scores,
-                    std::size_t max_points, std::size_t* refused) {
+                    std::size_t max_points, double max_growth, bool for_quantile,
+                    std::size_t* refused) {
   std::vector<Split> candidates;
   for (std::size_t a = 0; a < axes.size(); ++a) {
     const std::vector<double>& v = axes[a].values;
@@ -565,14 +623,15 @@ Axes SplitIntervals(const Axes& axes, const std::vector<std::vector<IntervalScor
       const IntervalScore& score = scores[a][j];
       if (score.max_error <= 1.0) continue;
       const double width = (v[j + 1] - v[j]) / range;
-      candidates.push_back({a, j, score.MeanSquare() * width * static_cast<double>(v.size())});
+      const double gain = for_quantile ? score.ShareMended() : score.MeanSquare();
+      candidates.push_back({a, j, gain * width * static_cast<double>(v.size())});
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Split& x, const Split& y) { return x.priority > y.priority; });
   std::vector<std::size_t> size(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) size[a] = axes[a].values.size();
-  const double pass_limit = kMaxGrowthPerPass * static_cast<double>(PointCount(axes));
+  const double pass_limit = max_growth * static_cast<double>(PointCount(axes));
   std::vector<std::vector<char>> chosen(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) chosen[a].assign(scores[a].size(), 0);
   *refused = 0;
@@ -648,20 +707,52 @@ double SlopeGrowth(const std::vector<std::vector<double>>& nodes, const Axes& ax
 
 struct ErrorEstimate {
   int compared = 0;
-  double p50 = kNaN, p95 = kNaN, max = kNaN;  ///< In units of the target.
+  /// Of each state's largest error over the refined outputs, in units of the target.
+  double p50 = kNaN, p95 = kNaN, max = kNaN;
+  /// The stop rule's quantile of each refined output's errors and its upper confidence bound,
+  /// the largest over the outputs (as `wrc verify` reports a quantile per output), and the
+  /// output that has it.
+  double quantile = kNaN, bound = kNaN;
+  std::string worst_output;
 };
 
-ErrorEstimate Summarise(std::vector<double> errors) {
+// The rank (0-based, in ascending order) of the sample that bounds the q-quantile from above
+// with kStopConfidenceZ's confidence: the number of samples below the true quantile is
+// binomial (n, q), so it exceeds n·q + z·sqrt(n·q·(1 − q)) only with that small probability.
+// q = 1 gives the largest sample.
+std::size_t QuantileBoundRank(std::size_t n, double q) {
+  const double nq = static_cast<double>(n) * q;
+  const double rank = std::ceil(nq + kStopConfidenceZ * std::sqrt(nq * (1.0 - q)));
+  return std::min(n - 1, static_cast<std::size_t>(rank));
+}
+
+// The sample quantile q of sorted errors (the same rank rule as `wrc verify`'s p95).
+double SortedQuantile(const std::vector<double>& sorted, double q) {
+  return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()))];
+}
+
+// per_output[i]: output i's errors at the states where it could be compared; worst: each
+// state's largest error.
+ErrorEstimate Summarise(std::vector<double> worst, std::vector<std::vector<double>> per_output,
+                        const std::vector<std::string>& names, double quantile) {
   ErrorEstimate estimate;
-  estimate.compared = static_cast<int>(errors.size());
-  if (errors.empty()) return estimate;
-  std::sort(errors.begin(), errors.end());
-  const auto at = [&](double q) {
-    return errors[std::min(errors.size() - 1, static_cast<std::size_t>(q * errors.size()))];
-  };
-  estimate.p50 = at(0.5);
-  estimate.p95 = at(0.95);
-  estimate.max = errors.back();
+  estimate.compared = static_cast<int>(worst.size());
+  if (worst.empty()) return estimate;
+  std::sort(worst.begin(), worst.end());
+  estimate.p50 = SortedQuantile(worst, 0.5);
+  estimate.p95 = SortedQuantile(worst, 0.95);
+  estimate.max = worst.back();
+  for (std::size_t i = 0; i < per_output.size(); ++i) {
+    std::vector<double>& errors = per_output[i];
+    if (errors.empty()) continue;
+    std::sort(errors.begin(), errors.end());
+    const double bound = errors[QuantileBoundRank(errors.size(), quantile)];
+    if (std::isnan(estimate.bound) || bound > estimate.bound) {
+      estimate.bound = bound;
+      estimate.quantile = SortedQuantile(errors, quantile);
+      estimate.worst_output = names[i];
+    }
+  }
   return estimate;
 }
 
@@ -821,8 +912,12 @@ class Refinement {
   GenerateSummary RunPass(int pass, const Axes& axes, const KnownPoints* known, TableData* data);
   std::optional<SampleRun> RunSamples(int pass, const std::vector<RefineSample>& samples);
   bool SolveProbes();
+  bool SolveCheckPoints();
   void SaySlopes(const std::vector<double>& errors) const;
-  ErrorEstimate FinalCheck(const Axes& axes, const TableData& data);
+  ErrorEstimate Estimate(const Axes& axes, const TableData& data);
+  bool QuantileMet(const ErrorEstimate& estimate, const Axes& axes, const TableData& data) const;
+  double NextGrowth(const PassRecord& record) const;
+  void KeepPass(int pass, const Axes& axes, const TableData& data);
   /// Every output at a point, interpolated as the table will be read.
   std::function<std::vector<double>(const std::vector<double>&)> Lookup(const Axes& axes,
                                                                         const TableData& data);
@@ -851,6 +946,10 @@ class Refinement {
   std::size_t computed_ = 0;
   std::vector<PassRecord> records_;
   std::vector<PointResult> probes_;  ///< Exact solves at SlopeProbes(), with a slope target.
+  /// The random states that judge every pass (kCheckPoints) and their exact solves.
+  std::vector<std::vector<double>> check_points_;
+  std::vector<PointResult> check_results_;
+  double cpu_start_ = ProcessCpuSeconds();
 };
 
 void Refinement::Say(const char* format, ...) const {
@@ -946,31 +1045,82 @@ bool Refinement::SolveProbes() {
   return true;
 }
 
-ErrorEstimate Refinement::FinalCheck(const Axes& axes, const TableData& data) {
+// The stop rule's random states: the same every pass, so solved once (journaled).
+bool Refinement::SolveCheckPoints() {
   SplitMix rng(Mix(settings_.seed, 0xC0FFEEull));
-  std::vector<std::vector<double>> points(kCheckPoints);
-  for (auto& point : points) {
-    for (const SceneAxis& axis : axes) {
+  check_points_.assign(kCheckPoints, {});
+  for (auto& point : check_points_) {
+    for (const SceneAxis& axis : scene_.axes) {
       point.push_back(axis.values.front() +
                       rng.Unit() * (axis.values.back() - axis.values.front()));
     }
   }
-  std::vector<double> z_guess(points.size(), kNaN);
+  const std::vector<double> z_guess(check_points_.size(), kNaN);
   StopControl stop(options_.cancel, 0, options_.handle_signals);
-  const fs::path journal = work_ / "check.journal";
-  const SampleRun run = SolvePoints(scene_, points, z_guess, journal, identity_ + "check",
-                                    ThreadsFor(options_, cluster_), stop, ProgressMode::kOff);
+  SampleRun run =
+      SolvePoints(scene_, check_points_, z_guess, work_ / "check.journal", identity_ + "check",
+                  ThreadsFor(options_, cluster_), stop, ProgressMode::kOff);
+  computed_ += run.computed;
+  if (!run.complete) return false;
+  check_results_ = std::move(run.results);
+  return true;
+}
+
+// The error of the grid, read as the table will be, at the check states.
+ErrorEstimate Refinement::Estimate(const Axes& axes, const TableData& data) {
   const std::function<std::vector<double>(const std::vector<double>&)> lookup = Lookup(axes, data);
-  std::vector<double> errors;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const PointResult& exact = run.results[i];
+  std::vector<double> worst;
+  std::vector<std::vector<double>> per_output(model_.outputs.size());
+  for (std::size_t i = 0; i < check_points_.size(); ++i) {
+    const PointResult& exact = check_results_[i];
     if (!Usable(exact.status) || exact.values.empty()) continue;
-    const std::vector<double> estimate = lookup(points[i]);
-    const double load = LocalLoad(model_, points[i], {&exact.values, &estimate});
-    const double e = NormalisedError(model_, load, exact.values, estimate);
-    if (!std::isnan(e)) errors.push_back(e);
+    const std::vector<double> estimate = lookup(check_points_[i]);
+    const double load = LocalLoad(model_, check_points_[i], {&exact.values, &estimate});
+    const std::vector<double> errors = NormalisedErrors(model_, load, exact.values, estimate);
+    double largest = kNaN;
+    for (std::size_t k = 0; k < errors.size(); ++k) {
+      if (std::isnan(errors[k])) continue;
+      per_output[k].push_back(errors[k]);
+      largest = std::isnan(largest) ? errors[k] : std::max(largest, errors[k]);
+    }
+    if (!std::isnan(largest)) worst.push_back(largest);
   }
-  return Summarise(errors);
+  return Summarise(std::move(worst), std::move(per_output), settings_.outputs, settings_.quantile);
+}
+
+// The stop rule: the asked quantile of the check states' errors within the target with the
+// rule's confidence and, with a slope target, every slope within its target. Quantile 1 leaves
+// the decision to the interval midpoints alone.
+bool Refinement::QuantileMet(const ErrorEstimate& estimate, const Axes& axes,
+                             const TableData& data) const {
+  if (settings_.quantile >= 1.0 || !(estimate.bound <= 1.0)) return false;
+  if (!settings_.slope) return true;
+  const std::vector<double> slopes = SlopeErrors(scene_, axes, data, probes_);
+  return std::none_of(slopes.begin(), slopes.end(), [](double e) { return e > 1.0; });
+}
+
+// The growth of the next pass (kGrowthMargin): the quantile bound taken to fall as a power of the
+// points, with the order measured between the previous pass and this one.
+double Refinement::NextGrowth(const PassRecord& record) const {
+  if (settings_.quantile >= 1.0 || records_.empty()) return kMaxGrowthPerPass;
+  const PassRecord& previous = records_.back();
+  const double fall = previous.quantile_bound / record.quantile_bound;
+  const double growth = static_cast<double>(record.points) / static_cast<double>(previous.points);
+  if (!(fall > 1.0) || !(growth > 1.0)) return kMaxGrowthPerPass;
+  const double order = std::log(fall) / std::log(growth);
+  const double needed = std::pow(record.quantile_bound, 1.0 / order) * kGrowthMargin;
+  return std::clamp(needed, kMinGrowthPerPass, kMaxGrowthPerPass);
+}
+
+// `--keep-passes`: the grid of a pass as a table beside the output, so that one run gives the
+// accuracy and size of every coarser table it passed through.
+void Refinement::KeepPass(int pass, const Axes& axes, const TableData& data) {
+  TableProvenance provenance;
+  provenance.rail_sha256 = Sha256FileHex(scene_.base.rail.path);
+  provenance.wheel_sha256 = Sha256FileHex(scene_.base.wheel.path);
+  provenance.created = IsoTimestampUtc();
+  const fs::path path = options_.output.string() + ".pass" + std::to_string(pass) + ".h5";
+  WriteTableFile(path, WithAxes(scene_, axes), data, provenance);
 }
 
 std::function<std::vector<double>(const std::vector<double>&)> Refinement::Lookup(
@@ -1009,12 +1159,17 @@ std::function<std::vector<double>(const std::vector<double>&)> Refinement::Looku
   };
 }
 
+nlohmann::json JsonNumberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
+
 std::string TargetDescription(const RefineSettings& settings) {
   nlohmann::json target = {
       {"load_fraction", settings.load_fraction},
       {"outputs", settings.outputs},
       {"max_points", settings.max_points},
       {"max_passes", settings.max_passes},
+      {"quantile", settings.quantile},
       {"samples", settings.samples},
       {"seed", settings.seed},
       {"interpolation", settings.interpolation == Interpolation::kCubic ? "cubic" : "linear"}};
@@ -1030,18 +1185,25 @@ std::string TargetDescription(const RefineSettings& settings) {
 
 GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
                                        const ErrorEstimate& check, const std::string& stop_reason) {
-  nlohmann::json passes = nlohmann::json::array();
+  nlohmann::json passes = nlohmann::json::array(), cpu_seconds = nlohmann::json::array();
   for (const PassRecord& r : records_) {
     passes.push_back({{"points", r.points},
                       {"new_points", r.new_points},
                       {"samples", r.samples},
                       {"intervals_above_target", r.above_target},
-                      {"worst_midpoint_error", r.worst}});
+                      {"worst_midpoint_error", r.worst},
+                      {"quantile_error", JsonNumberOrNull(r.quantile_error)},
+                      {"quantile_bound", JsonNumberOrNull(r.quantile_bound)}});
+    cpu_seconds.push_back(JsonNumberOrNull(r.cpu_seconds));
   }
   nlohmann::json estimate = {{"points", check.compared},
                              {"p50", check.p50},
                              {"p95", check.p95},
                              {"max", check.max},
+                             {"quantile", settings_.quantile},
+                             {"quantile_error", JsonNumberOrNull(check.quantile)},
+                             {"quantile_bound", JsonNumberOrNull(check.bound)},
+                             {"quantile_output", check.worst_output},
                              {"unit", "target"}};
   if (settings_.slope) {
     // The slope errors at the slope state, per axis (null: not a target, or unsolved).
@@ -1060,7 +1222,8 @@ GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
   hooks.attributes = {{schema::kRefineTarget, TargetDescription(settings_)},
                       {schema::kRefinePasses, passes.dump()},
                       {schema::kRefineStop, stop_reason},
-                      {schema::kRefineEstimatedError, estimate.dump()}};
+                      {schema::kRefineEstimatedError, estimate.dump()},
+                      {schema::kRefineCpuSeconds, cpu_seconds.dump()}};
   hooks.watch_signals = options_.handle_signals;
   GenerateOptions options = options_;
   options.handle_signals = false;
@@ -1069,6 +1232,7 @@ GenerateSummary Refinement::WriteFinal(const Axes& axes, const TableData& data,
   GenerateSummary summary = GenerateGrid(WithAxes(scene_, axes), options, cluster_, hooks);
   summary.computed = computed_;
   summary.reused = 0;
+  for (const PassRecord& r : records_) summary.passes.push_back({r.points, r.cpu_seconds});
   if (summary.complete) {
     std::error_code ignored;
     fs::remove_all(work_, ignored);
@@ -1085,7 +1249,7 @@ GenerateSummary Refinement::RunRoot() {
     throw;
   }
   int pass = static_cast<int>(passes.size()) - 1;
-  if (!SolveProbes()) return Interrupted({});
+  if (!SolveProbes() || !SolveCheckPoints()) return Interrupted({});
   std::optional<KnownPoints> known;
   // The previous pass's journal is removed once this pass's decision is written; a resume
   // that finds the decision but also the old journal (a stop in between) just removes it.
@@ -1118,14 +1282,26 @@ GenerateSummary Refinement::RunRoot() {
     Axes next = axes;
     std::vector<RefineSample> samples;
     std::optional<SampleRun> sample_run;
+    const ErrorEstimate estimate = Estimate(axes, data);
+    record.quantile_error = estimate.quantile;
+    record.quantile_bound = estimate.bound;
+    if (options_.keep_passes) KeepPass(pass, axes, data);
     if (pass >= settings_.max_passes) {
       stop_reason = "pass limit (" + std::to_string(settings_.max_passes) + " passes)";
+    } else if (QuantileMet(estimate, axes, data)) {
+      char reason[200];
+      std::snprintf(reason, sizeof reason,
+                    "target met: %g %% of %d random states within the target in every refined "
+                    "output (upper bound of the quantile %.3g × target, %s)",
+                    100 * settings_.quantile, estimate.compared, estimate.bound,
+                    estimate.worst_output.c_str());
+      stop_reason = reason;
     } else {
       samples = DrawRefineSamples(axes, settings_, pass);
       sample_run = RunSamples(pass, samples);
       if (!sample_run) return Interrupted(grid);
-      const RefineDecision decision =
-          DecideRefinement(scene_, axes, data, samples, sample_run->results, probes_);
+      const RefineDecision decision = DecideRefinement(
+          scene_, axes, data, samples, sample_run->results, probes_, NextGrowth(record));
       SaySlopes(decision.slope_errors);
       record.worst = decision.worst;
       record.above_target = decision.above_target;
@@ -1140,15 +1316,22 @@ GenerateSummary Refinement::RunRoot() {
       }
     }
     record.samples = samples.size();
+    record.cpu_seconds = ProcessCpuSeconds() - cpu_start_;
     records_.push_back(record);
-    Say("refinement pass %d: %s = %zu points, %zu intervals above target (worst %.3g × target)",
-        pass, DescribeAxes(axes).c_str(), record.points, record.above_target, record.worst);
+    char midpoints[96] = "midpoints not sampled";
+    if (!samples.empty()) {
+      std::snprintf(midpoints, sizeof midpoints, "%zu intervals above target (worst %.3g × target)",
+                    record.above_target, record.worst);
+    }
+    Say("refinement pass %d: %s = %zu points, %s, random states: %g %% quantile %.3g × target (%s; "
+        "bound %.3g)",
+        pass, DescribeAxes(axes).c_str(), record.points, midpoints, 100 * settings_.quantile,
+        estimate.quantile, estimate.worst_output.c_str(), estimate.bound);
     if (!stop_reason.empty()) {
       Say("refinement stops: %s", stop_reason.c_str());
-      const ErrorEstimate check = FinalCheck(axes, data);
-      Say("estimated error over %d random points: p95 %.3g, max %.3g × target", check.compared,
-          check.p95, check.max);
-      return WriteFinal(axes, data, check, stop_reason);
+      Say("estimated error over %d random points: p95 %.3g, max %.3g × target", estimate.compared,
+          estimate.p95, estimate.max);
+      return WriteFinal(axes, data, estimate, stop_reason);
     }
     passes.push_back(next);
     WritePasses(work_, identity_, passes, records_);
@@ -1385,8 +1568,10 @@ std::vector<double> SlopeErrors(const Scene& scene, const std::vector<SceneAxis>
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
                                 const std::vector<PointResult>& results,
-                                const std::vector<PointResult>& probes) {
+                                const std::vector<PointResult>& probes, double max_growth) {
   const RefineSettings& settings = *scene.refine;
+  if (!(max_growth > 1.0)) max_growth = kMaxGrowthPerPass;
+  const bool for_quantile = settings.quantile < 1.0;
   const auto scores = ScoreIntervals(axes, data, samples, results, MakeErrorModel(scene, settings),
                                      settings.interpolation);
   RefineDecision decision;
@@ -1397,7 +1582,8 @@ RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>
     }
   }
   if (!settings.slope) {
-    decision.next = SplitIntervals(axes, scores, settings.max_points, &decision.refused);
+    decision.next = SplitIntervals(axes, scores, settings.max_points, max_growth, for_quantile,
+                                   &decision.refused);
     return decision;
   }
   const std::vector<SlopeCheck> checks = CheckSlopes(scene, axes, data, probes);
@@ -1410,7 +1596,8 @@ RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>
   const std::vector<std::vector<double>> nodes = SlopeNodes(checks, axes);
   const auto split_budget =
       static_cast<std::size_t>(static_cast<double>(settings.max_points) / SlopeGrowth(nodes, axes));
-  decision.next = SplitIntervals(axes, scores, split_budget, &decision.refused);
+  decision.next =
+      SplitIntervals(axes, scores, split_budget, max_growth, for_quantile, &decision.refused);
   AddSlopeNodes(nodes, settings.max_points, &decision.next, &decision.refused);
   return decision;
 }

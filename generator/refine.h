@@ -90,10 +90,13 @@ struct RefineDecision {
 /// furthest from the solver (with one sample a side: the state ± step, so that the table's
 /// central difference there reads solved values only). These nodes come first; the interval
 /// splits get the point budget they leave.
+/// `max_growth`: the most the splits may grow the grid in this pass (0: the refinement's
+/// default, a doubling).
 RefineDecision DecideRefinement(const Scene& scene, const std::vector<SceneAxis>& axes,
                                 const TableData& data, const std::vector<RefineSample>& samples,
                                 const std::vector<PointResult>& results,
-                                const std::vector<PointResult>& probes = {});
+                                const std::vector<PointResult>& probes = {},
+                                double max_growth = 0.0);
 
 /// Multilinear interpolation of output `k` of a finished grid at `point` (inside the axes'
 /// ranges; clamped otherwise). NaN when a corner with non-zero weight is NaN.

@@ -224,6 +224,9 @@ void WorkerPool::SolveSegment(const SegmentTask& task) {
   const std::size_t size = layout_.SegmentSize(task.segment);
   // Warm start: z of the previous point of this segment when it solved fine, else a cold start.
   double previous_z = std::numeric_limits<double>::quiet_NaN();
+  // A segment runs along the last axis: its points share the pose when that axis is a load or
+  // a creepage, and the contact search with it.
+  WheelRailCache cache;
   for (std::size_t k = 0; k < size; ++k) {
     if (!task.done.empty() && task.done[k] != 0) {
       previous_z = task.known_z[k];
@@ -231,9 +234,9 @@ void WorkerPool::SolveSegment(const SegmentTask& task) {
     }
     if (!stop_.ClaimPoint()) return;
     const std::uint64_t point = first + k;
-    PointResult result =
-        SolveScenePoint(scene_, layout_.Indices(point),
-                        warm_start_ ? previous_z : std::numeric_limits<double>::quiet_NaN());
+    PointResult result = SolveScenePoint(
+        scene_, layout_.Indices(point),
+        warm_start_ ? previous_z : std::numeric_limits<double>::quiet_NaN(), &cache);
     previous_z = result.z;
     sink_.Accept(point, std::move(result));
   }

@@ -85,13 +85,13 @@ std::vector<double> CriticalPoints(const Cubic& p) {
   return inside;
 }
 
-/// The root of p(t) = target in [lo, hi], where p is monotone and changes sign: Newton steps
-/// kept inside the shrinking bracket, bisection when a step would leave it.
-double SolveMonotone(const Cubic& p, double target, double lo, double hi) {
-  double f_lo = p.Value(lo) - target;
+/// The root of p(t) = target in [lo, hi], where p is monotone and changes sign (f_lo and f_hi:
+/// p − target at the ends): Newton steps kept inside the shrinking bracket, bisection when a
+/// step would leave it.
+double SolveMonotone(const Cubic& p, double target, double lo, double hi, double f_lo,
+                     double f_hi) {
   // Start from the chord (regula falsi): on the short, nearly straight knot intervals of a
   // profile it is within a few ulps of the root after one or two Newton steps.
-  const double f_hi = p.Value(hi) - target;
   double t = f_lo != f_hi ? lo + (hi - lo) * f_lo / (f_lo - f_hi) : 0.5 * (lo + hi);
   if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 200; ++iteration) {
@@ -118,6 +118,8 @@ struct YPiece {
   Cubic z;  ///< z(s) on the same interval, for ZAtY without a GSL lookup.
   /// 0, the critical points of y inside (0, h) ascending, h: y is monotone between them.
   std::array<double, 4> bounds;
+  /// y at each bound, kept because every root search on the interval starts from them.
+  std::array<double, 4> bound_y;
   std::size_t bound_count;
   double y_min;  ///< Range of y over the interval (end values and extrema).
   double y_max;
@@ -197,12 +199,12 @@ struct ProfileSpline::Impl {
     const YPiece& piece = pieces[k];
     if (y < piece.y_min || y > piece.y_max) return;
     for (std::size_t b = 0; b + 1 < piece.bound_count; ++b) {
-      const double f_lo = piece.y.Value(piece.bounds[b]) - y;
-      const double f_hi = piece.y.Value(piece.bounds[b + 1]) - y;
+      const double f_lo = piece.bound_y[b] - y;
+      const double f_hi = piece.bound_y[b + 1] - y;
       if (f_lo == 0.0) {
         found(piece.bounds[b]);
       } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_hi != 0.0) {
-        found(SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1]));
+        found(SolveMonotone(piece.y, y, piece.bounds[b], piece.bounds[b + 1], f_lo, f_hi));
       }
     }
   }
@@ -320,6 +322,8 @@ YPiece MakeYPiece(const Part& part, const std::vector<double>& s, const std::vec
     piece.y_max = std::max(piece.y_max, piece.y.Value(t));
   }
   piece.bounds[piece.bound_count++] = piece.y.h;
+  for (std::size_t b = 0; b < piece.bound_count; ++b)
+    piece.bound_y[b] = piece.y.Value(piece.bounds[b]);
   return piece;
 }
 

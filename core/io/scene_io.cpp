@@ -332,7 +332,7 @@ std::map<std::string, double, std::less<>> ReadPositiveByName(
 }
 
 const std::vector<std::string_view> kRefineKeys = {
-    "target",     "absolute", "outputs", "interpolation", "max_points",
+    "target",     "absolute", "outputs", "interpolation", "quantile", "max_points",
     "max_passes", "samples",  "seed",    "min_step",      "slope"};
 const std::vector<std::string_view> kSlopeKeys = {"target", "at", "step", "window", "axes"};
 
@@ -507,6 +507,11 @@ RefineSettings ReadRefineSettings(const Section& refine, const Scene& scene) {
                                          {{"linear", RefineSettings::Interpolation::kLinear},
                                           {"cubic", RefineSettings::Interpolation::kCubic}},
                                          settings.interpolation);
+  settings.quantile = refine.Number("quantile", settings.quantile);
+  // Below a half the "typical" error would be a median; 1 keeps every midpoint within target.
+  if (!(settings.quantile >= 0.5 && settings.quantile <= 1.0)) {
+    refine.Fail("quantile", "must be a share of the states between 0.5 and 1");
+  }
   const std::int64_t points = static_cast<std::int64_t>(scene.PointCount());
   settings.max_points = static_cast<std::size_t>(
       ReadInteger(refine, "max_points", std::max<std::int64_t>(points, 1'000'000), points,

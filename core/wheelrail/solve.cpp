@@ -61,6 +61,7 @@ void Validate(const Case& c) {
 struct Problem {
   const Case* c = nullptr;
   const WheelRailOptions* options = nullptr;
+  std::shared_ptr<const ProfileSpline> rail_spline;
   std::unique_ptr<PlacedRail> rail;
   std::shared_ptr<const ProfileSpline> wheel_spline;
   WheelsetKinematics kin;  // right-side equivalent
@@ -130,12 +131,75 @@ double HertzGuess(const Problem& pb, double fz, double first_contact) {
   return first_contact + std::min(sink, 0.5 * kInitialReach);
 }
 
+}  // namespace
+
+// The inputs of a contact search or a placement check, compared exactly. The profiles are held,
+// not only pointed to, so that an address cannot be reused by another profile while cached.
+struct PoseKey {
+  std::shared_ptr<const ProfileSpline> rail, wheel;
+  Track track;
+  Wheelset wheelset;
+  double y = 0.0, roll = 0.0, yaw = 0.0, reach = 0.0, z_limit = 0.0;
+  bool operator==(const PoseKey& o) const {
+    return rail == o.rail && wheel == o.wheel && track.gauge_height == o.track.gauge_height &&
+           track.gauge_width == o.track.gauge_width && track.cant == o.track.cant &&
+           track.rail_y == o.track.rail_y && track.rail_z == o.track.rail_z &&
+           wheelset.side == o.wheelset.side &&
+           wheelset.flange_back_distance == o.wheelset.flange_back_distance &&
+           wheelset.flange_back_position == o.wheelset.flange_back_position &&
+           wheelset.nominal_radius == o.wheelset.nominal_radius && y == o.y && roll == o.roll &&
+           yaw == o.yaw && reach == o.reach && z_limit == o.z_limit;
+  }
+};
+
+struct WheelRailCache::Impl {
+  // The searches of the last pose: the first one and the deeper ones an fz iteration adds.
+  static constexpr std::size_t kSearches = 4;
+  std::vector<std::pair<PoseKey, wr::ContactSearch>> searches;
+  // AddPlacementWarning's, one per pair and placement (a few at most).
+  static constexpr std::size_t kNominalContacts = 8;
+  std::vector<std::pair<PoseKey, double>> nominal_contacts;
+};
+
+WheelRailCache::WheelRailCache() : impl_(std::make_unique<Impl>()) {}
+WheelRailCache::~WheelRailCache() = default;
+
+namespace {
+
+PoseKey KeyOf(const Problem& pb, const WheelsetKinematics& kin, double reach, double z_limit) {
+  return PoseKey{pb.rail_spline, pb.wheel_spline, pb.c->track, pb.c->wheelset, kin.y,
+                 kin.roll,       kin.yaw,         reach,       z_limit};
+}
+
 // The contact search at z = 0 with its samples located wherever the gap comes within `reach`
-// of first contact (and below z_limit, when z is prescribed).
+// of first contact (and below z_limit, when z is prescribed); from the cache when it holds
+// the same search.
 void Search(Problem& pb, double reach, double z_limit) {
+  pb.reach = reach;
+  WheelRailCache* cache = pb.options->cache;
+  if (cache == nullptr) {
+    const PlacedWheel wheel0(pb.wheel_spline, pb.c->wheelset, pb.kin);
+    pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, reach, z_limit);
+    return;
+  }
+  auto& searches = cache->impl().searches;
+  PoseKey key = KeyOf(pb, pb.kin, reach, z_limit);
+  for (const auto& [stored, search] : searches) {
+    if (stored == key) {
+      pb.search = search;
+      return;
+    }
+  }
   const PlacedWheel wheel0(pb.wheel_spline, pb.c->wheelset, pb.kin);
   pb.search = wr::SearchContact(*pb.rail, wheel0, kSearchStep, reach, z_limit);
-  pb.reach = reach;
+  // Another pose: the searches of the last one are of no more use.
+  if (!searches.empty() &&
+      (searches.front().first.y != key.y || searches.front().first.roll != key.roll ||
+       searches.front().first.yaw != key.yaw)) {
+    searches.clear();
+  }
+  if (searches.size() == WheelRailCache::Impl::kSearches) searches.erase(searches.begin());
+  searches.emplace_back(std::move(key), pb.search);
 }
 
 // Wheelset height z below the heights the search covers: searches again with a reach that
@@ -295,6 +359,25 @@ double FirstContact(const ContactSearch& search) {
   return first;
 }
 
+// The first contact at the nominal pose `kin`, from the cache when it has it.
+double NominalFirstContact(const Problem& pb, const WheelsetKinematics& kin) {
+  const auto search = [&]() {
+    const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
+    return FirstContact(wr::SearchContact(*pb.rail, wheel, kSearchStep, 0.0));
+  };
+  WheelRailCache* cache = pb.options->cache;
+  if (cache == nullptr) return search();
+  auto& known = cache->impl().nominal_contacts;
+  PoseKey key = KeyOf(pb, kin, 0.0, std::numeric_limits<double>::infinity());
+  for (const auto& [stored, first] : known) {
+    if (stored == key) return first;
+  }
+  const double first = search();
+  if (known.size() == WheelRailCache::Impl::kNominalContacts) known.erase(known.begin());
+  known.emplace_back(std::move(key), first);
+  return first;
+}
+
 // Whether the profiles, as placed, first touch near z = 0 at the nominal position
 // (kMaxNominalContactHeight); `first_contact` is that of the case's own pose, which is the
 // nominal one when y, roll and yaw are all 0 (no second search then).
@@ -303,8 +386,7 @@ void AddPlacementWarning(const Problem& pb, double first_contact, WheelRailResul
   if (pb.kin.y != 0.0 || pb.kin.roll != 0.0 || pb.kin.yaw != 0.0) {
     WheelsetKinematics kin = pb.kin;
     kin.y = kin.roll = kin.yaw = kin.z = 0.0;
-    const PlacedWheel wheel(pb.wheel_spline, pb.c->wheelset, kin);
-    nominal = FirstContact(wr::SearchContact(*pb.rail, wheel, kSearchStep, 0.0));
+    nominal = NominalFirstContact(pb, kin);
   }
   if (std::fabs(nominal) <= kMaxNominalContactHeight) return;
   const std::string where = std::isfinite(nominal)
@@ -587,7 +669,8 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   pb.options = &options;
   pb.material = CombinedElasticity::FromBodies(c.rail_material, c.wheel_material);
   // Profiles already read by LoadCase / LoadScene are shared; a case built in code is read here.
-  pb.rail = std::make_unique<PlacedRail>(SplineOf(c.rail, ProfileKind::kRail), c.track);
+  pb.rail_spline = SplineOf(c.rail, ProfileKind::kRail);
+  pb.rail = std::make_unique<PlacedRail>(pb.rail_spline, c.track);
   pb.wheel_spline = SplineOf(c.wheel, ProfileKind::kWheel);
 
   const std::string flange_back_hint = CheckFlangeBack(c, *pb.wheel_spline);

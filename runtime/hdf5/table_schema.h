@@ -28,6 +28,9 @@ inline constexpr const char* kRefineTarget = "refine_target";
 inline constexpr const char* kRefinePasses = "refine_passes";
 inline constexpr const char* kRefineStop = "refine_stop";
 inline constexpr const char* kRefineEstimatedError = "refine_estimated_error";
+/// JSON array: the CPU seconds of the generating process at the end of each pass, a
+/// measurement (like /solve_time_s), so apart from the reproducible refinement record.
+inline constexpr const char* kRefineCpuSeconds = "refine_cpu_seconds";
 
 // Groups and datasets.
 inline constexpr const char* kAxes = "axes";               ///< group: one dataset per axis

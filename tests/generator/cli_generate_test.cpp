@@ -397,7 +397,9 @@ TEST(CliGenerate, InfoNamesTheInterpolationATableWasRefinedFor) {
         test::RunCommand(Quoted(test::WrcBinary()) + " info " + Quoted(table.string()), dir.path());
     ASSERT_EQ(info.exit_code, 0) << info.err;
     const std::string named = mode == "cubic" ? "cubic" : "multilinear";
-    EXPECT_NE(info.out.find("midpoints, " + named + " lookups)"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("random states, each output, " + named + " lookups)"),
+              std::string::npos)
+        << info.out;
     EXPECT_NE(info.out.find("random points (" + named + ")"), std::string::npos) << info.out;
   }
 }

@@ -406,6 +406,64 @@ TEST(Refine, RealSceneMeetsItsSlopeTarget) {
   EXPECT_NE(estimate.find("\"slope\":{\"y\":"), std::string::npos) << estimate;
 }
 
+// The share of states within the target, estimated at random states independently of the
+// refinement's own check (another seed, through the runtime): the p-quantile of |fy error| / load.
+double QuantileRelativeError(const Scene& scene, const fs::path& table_path, double q) {
+  Table table(table_path.string());
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> y(2.0, 8.0);
+  std::vector<double> errors;
+  for (int k = 0; k < 400; ++k) {
+    const double point = y(rng);
+    const WheelRailResult exact = SolveWheelRail(CaseAtPoint(scene, {point}));
+    const std::vector<double> looked_up = table.eval(std::vector<double>{point});
+    errors.push_back(std::fabs(looked_up[1] - exact.force_T(1)) / 10000.0);
+  }
+  std::sort(errors.begin(), errors.end());
+  return errors[static_cast<std::size_t>(q * errors.size())];
+}
+
+// Across the tread-to-flange transition, whose jump no interval ever meets the target across:
+// the midpoint rule (quantile 1) splits down to the smallest step there; the quantile stop ends
+// once 95 % of the states are within the target, with fewer nodes, and an independent sample
+// agrees. With --keep-passes every pass's grid is a table of its own.
+TEST(Refine, AQuantileStopMeetsTheShareOfStatesWithFewerNodes) {
+  ScratchDir dir("refine_quantile");
+  const std::string refine = "target = 0.005\nsamples = 1\n";
+  const Scene quantile = LoadScene(WriteFile(dir / "quantile.toml", TinyScene(RealTable(refine))));
+  const Scene midpoints = LoadScene(
+      WriteFile(dir / "midpoints.toml", TinyScene(RealTable(refine + "quantile = 1.0\n"))));
+  ASSERT_EQ(quantile.refine->quantile, 0.95);
+  GenerateOptions options = Quiet(dir / "quantile.h5");
+  options.keep_passes = true;
+  const GenerateSummary by_quantile = GenerateTable(quantile, options);
+  const GenerateSummary by_midpoints = GenerateTable(midpoints, Quiet(dir / "midpoints.h5"));
+  ASSERT_TRUE(by_quantile.complete && by_midpoints.complete);
+  EXPECT_LT(by_quantile.points, by_midpoints.points);
+  EXPECT_LE(QuantileRelativeError(quantile, dir / "quantile.h5", 0.95), 0.005);
+  Table table((dir / "quantile.h5").string());
+  EXPECT_NE(table.attribute("refine_stop").find("target met: 95 % of 1000 random states"),
+            std::string::npos)
+      << table.attribute("refine_stop");
+  EXPECT_EQ(Table((dir / "midpoints.h5").string()).attribute("refine_stop").find("random"),
+            std::string::npos);
+  // Every pass kept, with its grid's points; CPU time grows pass by pass.
+  ASSERT_GE(by_quantile.passes.size(), 2u);
+  for (std::size_t p = 0; p < by_quantile.passes.size(); ++p) {
+    const Table pass((dir / ("quantile.h5.pass" + std::to_string(p) + ".h5")).string());
+    EXPECT_EQ(pass.axis_values(0).size(), by_quantile.passes[p].points) << p;
+    if (p > 0) {
+      EXPECT_GT(by_quantile.passes[p].cpu_seconds, by_quantile.passes[p - 1].cpu_seconds);
+    }
+  }
+  EXPECT_EQ(
+      Table((dir / ("quantile.h5.pass" + std::to_string(by_quantile.passes.size() - 1) + ".h5"))
+                .string())
+          .axis_values(0),
+      table.axis_values(0));
+  EXPECT_GT(by_quantile.cpu_seconds, 0.0);
+}
+
 TEST(Refine, ResumedRunsGiveTheSameBits) {
   ScratchDir dir("refine_resume");
   const fs::path scene_path = WriteFile(

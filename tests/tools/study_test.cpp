@@ -121,13 +121,24 @@ TEST_F(Study, TablesRunsOnTheUsersScene) {
   scene.replace(scene.find("y = 4.0  # mm\n"), 14, "");
   scene += "[table]\naxes = [\"y\"]\ny = [0.0, 2.0, 4.0]\noutputs = [\"fx\", \"fy\", \"fz\"]\n";
   std::ofstream(dir_ / "scene.toml") << scene;
-  ASSERT_EQ(Run("study tables scene.toml --targets 0.2 --samples 4 --threads 2 --out out"), 0)
+  ASSERT_EQ(Run("study tables scene.toml --targets 0.2 --samples 4 --threads 2 --uniform "
+                "--midpoint-rule 0.002 --out out"),
+            0)
       << Err();
   const auto rows = CsvRows(dir_ / "out" / "tables.csv");
-  ASSERT_EQ(rows.size(), 2u);  // the refined table and its uniform twin
+  // The refined table, its uniform twin, then every pass of the midpoint rule's run.
+  ASSERT_GE(rows.size(), 4u) << Err();
   EXPECT_EQ(rows[0][0], "refined");
   EXPECT_EQ(rows[1][0], "uniform");
-  EXPECT_EQ(rows[0][2], rows[1][2]);  // the same number of points, by construction
+  EXPECT_EQ(rows[0][3], rows[1][3]);  // the same number of points, by construction
+  for (std::size_t r = 2; r < rows.size(); ++r) {
+    EXPECT_EQ(rows[r][0], "midpoint_rule");
+    EXPECT_EQ(rows[r][2], std::to_string(r - 2));  // the pass
+    EXPECT_GT(std::stod(rows[r][5]), 0.0);         // its CPU time so far
+    if (r > 2) {
+      EXPECT_GT(std::stod(rows[r][3]), std::stod(rows[r - 1][3]));  // points grow
+    }
+  }
   EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / "tables.md"));
   if (HaveGnuplot()) {
     EXPECT_TRUE(IsPng(dir_ / "out" / "tables.png"));
@@ -285,7 +296,7 @@ TEST_F(Study, DynamicsGivesTheVehiclesLinearCriticalSpeed) {
 
 TEST_F(Study, HelpShowsTheDefaults) {
   ASSERT_EQ(Run("study tables --help"), 0) << Err();
-  EXPECT_NE(Out().find("300"), std::string::npos) << Out();           // --samples
+  EXPECT_NE(Out().find("1000"), std::string::npos) << Out();          // --samples
   EXPECT_NE(Out().find("study-tables"), std::string::npos) << Out();  // --out
   ASSERT_EQ(Run("study solver --help"), 0) << Err();
   EXPECT_NE(Out().find("0.25"), std::string::npos) << Out();  // --sizes

@@ -61,6 +61,8 @@ void PrintSummary(const std::string& output, const GenerateSummary& s) {
   }
   std::cout << " on " << s.threads << (s.threads == 1 ? " thread" : " threads");
   if (s.ranks > 1) std::cout << " per rank, " << s.ranks << " MPI ranks";
+  std::cout << ", " << std::setprecision(1) << s.cpu_seconds << " CPU s"
+            << (s.ranks > 1 ? " on rank 0" : "");
   if (s.reused > 0) std::cout << "; " << s.reused << " points reused from the journal";
   std::cout << '\n' << std::defaultfloat;
   if (!s.failures.empty()) {
@@ -134,6 +136,7 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
   auto resume = std::make_shared<bool>(false);
   auto quiet = std::make_shared<bool>(false);
   auto cold_start = std::make_shared<bool>(false);
+  auto keep_passes = std::make_shared<bool>(false);
   cmd->add_option("SCENE", *scene_path,
                   "Scene file (TOML, " + DocFile("reference/case-files.md") + ")")
       ->required();
@@ -150,6 +153,9 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--no-warm-start", *cold_start,
                 "Start every prescribed-fz solve from first contact instead of from the previous "
                 "point's z (slower; results differ in the last digits)");
+  cmd->add_flag("--keep-passes", *keep_passes,
+                "A refinement also writes every pass's grid as TABLE.h5.pass<P>.h5 (one run, "
+                "the accuracy and size of every coarser table on the way)");
   cmd->callback([=]() {
     try {
       if (*estimate) {
@@ -169,6 +175,7 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
       options.progress = *quiet ? ProgressMode::kOff : ProgressMode::kAuto;
       options.handle_signals = true;
       options.warm_start = !*cold_start;
+      options.keep_passes = *keep_passes;
       const GenerateSummary summary = GenerateTable(scene, options);
       if (!summary.is_root) {
         *exit_code = summary.interrupted ? kExitInterrupted : kExitOk;

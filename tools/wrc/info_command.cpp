@@ -148,11 +148,16 @@ nlohmann::json RefineAttribute(const std::string& path, const TableInfo& info,
 nlohmann::json Refinement(const std::string& path, const TableInfo& info) {
   if (Attribute(info, schema::kRefineTarget).empty()) return nullptr;
   using Kind = nlohmann::json::value_t;
-  return {{"target", RefineAttribute(path, info, schema::kRefineTarget, Kind::object)},
-          {"passes", RefineAttribute(path, info, schema::kRefinePasses, Kind::array)},
-          {"stop", Attribute(info, schema::kRefineStop)},
-          {"estimated_error",
-           RefineAttribute(path, info, schema::kRefineEstimatedError, Kind::object)}};
+  nlohmann::json r = {{"target", RefineAttribute(path, info, schema::kRefineTarget, Kind::object)},
+                      {"passes", RefineAttribute(path, info, schema::kRefinePasses, Kind::array)},
+                      {"stop", Attribute(info, schema::kRefineStop)},
+                      {"estimated_error",
+                       RefineAttribute(path, info, schema::kRefineEstimatedError, Kind::object)}};
+  // Tables refined before the CPU time was recorded have none.
+  if (!Attribute(info, schema::kRefineCpuSeconds).empty()) {
+    r["cpu_seconds"] = RefineAttribute(path, info, schema::kRefineCpuSeconds, Kind::array);
+  }
+  return r;
 }
 
 void PrintRefinement(const std::string& path, const TableInfo& info) {
@@ -168,16 +173,37 @@ void PrintRefinement(const std::string& path, const TableInfo& info) {
   }
   // Tables refined before the target named its interpolation were refined for linear lookups.
   const bool cubic = target.value("interpolation", std::string("linear")) == "cubic";
-  std::cout << " (at sampled interval midpoints, " << (cubic ? "cubic" : "multilinear")
-            << " lookups); budget " << target.value("max_points", 0) << " points, "
-            << target.value("max_passes", 0) << " passes\n";
-  int pass = 0;
+  // Tables refined before the target named a quantile kept every sampled midpoint within it.
+  const double quantile = target.value("quantile", 1.0);
+  if (quantile < 1.0) {
+    std::cout << " (at " << 100 * quantile << " % of random states, each output, ";
+  } else {
+    std::cout << " (at sampled interval midpoints, ";
+  }
+  std::cout << (cubic ? "cubic" : "multilinear") << " lookups); budget "
+            << target.value("max_points", 0) << " points, " << target.value("max_passes", 0)
+            << " passes\n";
+  std::size_t pass = 0;
   for (const nlohmann::json& p : r["passes"]) {
-    std::cout << "  pass " << pass++ << ": " << p.value("points", 0) << " points ("
-              << p.value("new_points", 0) << " solved), " << p.value("samples", 0)
-              << " midpoint solves, " << p.value("intervals_above_target", 0)
-              << " intervals above target, worst " << p.value("worst_midpoint_error", 0.0)
-              << " × target\n";
+    std::cout << "  pass " << pass << ": " << p.value("points", 0) << " points ("
+              << p.value("new_points", 0) << " solved), ";
+    if (p.value("samples", 0) == 0) {
+      std::cout << "midpoints not sampled";  // the last pass: the stop rule needs none
+    } else {
+      std::cout << p.value("samples", 0) << " midpoint solves, "
+                << p.value("intervals_above_target", 0) << " intervals above target, worst "
+                << p.value("worst_midpoint_error", 0.0) << " × target";
+    }
+    if (p.contains("quantile_error") && p["quantile_error"].is_number()) {
+      std::cout << "; random states: " << 100 * quantile << " % quantile "
+                << p["quantile_error"].get<double>() << " × target";
+    }
+    if (r.contains("cpu_seconds") && pass < r["cpu_seconds"].size() &&
+        r["cpu_seconds"][pass].is_number()) {
+      std::cout << "; " << r["cpu_seconds"][pass].get<double>() << " CPU s so far";
+    }
+    std::cout << '\n';
+    ++pass;
   }
   std::cout << "  stopped: " << r["stop"].get<std::string>() << '\n';
   const nlohmann::json& e = r["estimated_error"];

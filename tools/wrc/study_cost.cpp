@@ -231,15 +231,34 @@ int StudySolver(const std::vector<std::string>& case_paths, std::vector<double> 
 // ---- tables: accuracy against points, size and time -----------------------------------------
 
 struct TableRow {
-  std::string kind;  // "uniform" or "refined"
+  std::string kind;  // kRefined, kMidpoints or kUniform
   double target = 0.0;
+  int pass = -1;  // kMidpoints: the pass of the refinement
   std::size_t points = 0;
-  double generate_s = 0.0;
+  double generate_s = 0.0, cpu_s = 0.0;
   std::uintmax_t bytes = 0;
   // Per mode (0 linear, 1 cubic): the largest p95 / max of the force errors relative to the
   // local load, z's p95 (mm), the lookup time.
   double force_p95[2] = {}, force_max[2] = {}, force_rms[2] = {}, z_p95[2] = {}, lookup_ns[2] = {};
   std::string axes;
+};
+
+// The kinds of table a study compares: the scene's refinement at each target, the passes of one
+// refinement that stops only when every sampled midpoint is within the target (quantile 1: the
+// rule of tables made before the quantile stop, so the generator that came before), and uniform
+// tables with the refined tables' node counts.
+constexpr const char* kRefined = "refined";
+constexpr const char* kMidpoints = "midpoint_rule";
+constexpr const char* kUniform = "uniform";
+
+struct TablesStudy {
+  fs::path scene, out;
+  std::vector<double> targets;
+  double midpoint_target = 0.0;  ///< 0: no midpoint-rule run
+  bool uniform = false;
+  int samples = 1000;
+  std::uint64_t seed = 1;
+  int threads = 0;
 };
 
 std::vector<double> Linspace(double first, double last, std::size_t n) {
@@ -253,12 +272,12 @@ std::vector<double> Linspace(double first, double last, std::size_t n) {
 
 double JsonNumber(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; }
 
-void Measure(const fs::path& table, int samples, std::uint64_t seed, int threads, TableRow* row) {
+void Measure(const fs::path& table, const TablesStudy& study, TableRow* row) {
   VerifyOptions options;
   options.table = table.string();
-  options.samples = samples;
-  options.seed = seed;
-  options.threads = threads;
+  options.samples = study.samples;
+  options.seed = study.seed;
+  options.threads = study.threads;
   const Verification v = VerifyTable(options);
   for (int mode = 0; mode < 2; ++mode) {
     const nlohmann::json& m = v.report["interpolation"][mode == 0 ? "linear" : "cubic"];
@@ -276,7 +295,7 @@ void Measure(const fs::path& table, int samples, std::uint64_t seed, int threads
   row->bytes = fs::file_size(table);
 }
 
-GenerateSummary Generate(const Scene& scene, const fs::path& table, int threads) {
+GenerateSummary Generate(const Scene& scene, const fs::path& table, int threads, bool keep_passes) {
   fs::remove(table);
   std::error_code ignored;
   fs::remove(fs::path(table.string() + ".journal"), ignored);
@@ -286,6 +305,7 @@ GenerateSummary Generate(const Scene& scene, const fs::path& table, int threads)
   options.threads = threads;
   options.progress = ProgressMode::kOff;
   options.handle_signals = true;
+  options.keep_passes = keep_passes;
   const GenerateSummary summary = GenerateTable(scene, options);
   if (!summary.complete) {
     throw Interrupted("interrupted while generating " + table.string() +
@@ -302,111 +322,212 @@ std::string AxesText(const std::vector<SceneAxis>& axes) {
   return text;
 }
 
-void WriteTablesReport(const fs::path& out, const fs::path& scene_path,
-                       const std::vector<TableRow>& rows, int samples, std::uint64_t seed) {
+std::string RowLabel(const TableRow& r) {
+  char label[64];
+  if (r.kind == kMidpoints) {
+    std::snprintf(label, sizeof label, "midpoint rule %g, pass %d", r.target, r.pass);
+  } else {
+    std::snprintf(label, sizeof label, "%s %g", r.kind.c_str(), r.target);
+  }
+  return label;
+}
+
+void WriteTablesCsv(const fs::path& out, const std::vector<TableRow>& rows) {
   OutputText csv(out / "tables.csv");
-  csv << "kind,target,points,generate_s,file_bytes,force_p95_linear,force_rms_linear,"
+  csv << "kind,target,pass,points,generate_s,cpu_s,file_bytes,force_p95_linear,force_rms_linear,"
          "force_max_linear,z_p95_linear_mm,lookup_ns_linear,force_p95_cubic,force_rms_cubic,"
          "force_max_cubic,z_p95_cubic_mm,lookup_ns_cubic,axes\n";
   csv.precision(6);
-  OutputText md(out / "tables.md");
-  md << "# Table accuracy against size and time\n\nTables of `" << scene_path.filename().string()
-     << "`, " << samples << " uniform random samples (seed " << seed
-     << ") re-solved exactly. Force errors: the largest over the force outputs, as a fraction "
-        "of the local wheel load.\n\n"
-     << "| table | points | generate (s) | file (MB) | p95 lin | rms lin | max lin | p95 cub | "
-        "rms cub | z p95 lin (µm) | lookup lin / cub (ns) |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TableRow& r : rows) {
-    csv << r.kind << ',' << r.target << ',' << r.points << ',' << r.generate_s << ',' << r.bytes;
+    csv << r.kind << ',' << r.target << ',' << r.pass << ',' << r.points << ',' << r.generate_s
+        << ',' << r.cpu_s << ',' << r.bytes;
     for (int m = 0; m < 2; ++m) {
       csv << ',' << r.force_p95[m] << ',' << r.force_rms[m] << ',' << r.force_max[m] << ','
           << r.z_p95[m] << ',' << r.lookup_ns[m];
     }
     csv << ",\"" << r.axes << "\"\n";
-    char line[400];
-    std::snprintf(line, sizeof line,
-                  "| %s%s | %zu | %.0f | %.1f | %.2f %% | %.2f %% | %.1f %% | %.2f %% | %.2f %% | "
-                  "%.1f | %.0f / %.0f |\n",
-                  r.kind.c_str(),
-                  r.kind == "refined" ? (" " + std::to_string(r.target)).substr(0, 7).c_str() : "",
-                  r.points, r.generate_s, r.bytes / 1e6, 100 * r.force_p95[0], 100 * r.force_rms[0],
-                  100 * r.force_max[0], 100 * r.force_p95[1], 100 * r.force_rms[1],
-                  1e3 * r.z_p95[0], r.lookup_ns[0], r.lookup_ns[1]);
-    md << line;
   }
   csv.Commit();
-  // One data file per kind (points, p95 multilinear, p95 cubic in %), so that lines connect.
-  for (const char* kind : {"refined", "uniform"}) {
-    OutputText dat(out / (std::string("tables_") + kind + ".dat"));
-    dat << "# points p95_linear_percent p95_cubic_percent\n";
-    for (const TableRow& r : rows) {
-      if (r.kind == kind) {
-        dat << r.points << ' ' << 100 * r.force_p95[0] << ' ' << 100 * r.force_p95[1] << '\n';
-      }
-    }
-    dat.Commit();
+}
+
+void WriteTablesMarkdown(const fs::path& out, const TablesStudy& study,
+                         const std::vector<TableRow>& rows) {
+  OutputText md(out / "tables.md");
+  md << "# Table accuracy against size and time\n\nTables of `" << study.scene.filename().string()
+     << "`, " << study.samples << " uniform random samples (seed " << study.seed
+     << ") re-solved exactly. Force errors: the largest over the force outputs, as a fraction "
+        "of the local wheel load. CPU: the generating process's CPU time (all threads) up to "
+        "that table.\n\n"
+     << "| table | points | CPU (s) | wall (s) | file (MB) | p95 lin | rms lin | max lin | "
+        "p95 cub | rms cub | z p95 lin (µm) | lookup lin / cub (ns) |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const TableRow& r : rows) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "| %s | %zu | %.0f | %.0f | %.1f | %.2f %% | %.2f %% | %.1f %% | %.2f %% | "
+                  "%.2f %% | %.1f | %.0f / %.0f |\n",
+                  RowLabel(r).c_str(), r.points, r.cpu_s, r.generate_s, r.bytes / 1e6,
+                  100 * r.force_p95[0], 100 * r.force_rms[0], 100 * r.force_max[0],
+                  100 * r.force_p95[1], 100 * r.force_rms[1], 1e3 * r.z_p95[0], r.lookup_ns[0],
+                  r.lookup_ns[1]);
+    md << line;
   }
-  std::ostringstream gp;
-  gp << "set terminal pngcairo noenhanced size 1000,650 font ',10'\nset output 'tables.png'\n"
-     << "set logscale xy\nset grid\nset key top right\nset offsets graph 0.1, graph 0.1, 0, 0\n"
-     << "set xlabel 'table points'\nset ylabel 'p95 force error, % of the local wheel load'\n"
-     << "set yrange [0.1:*]\n"
-     << "set title \"" << scene_path.filename().string()
-     << ": interpolation error against table size (" << samples << " exact solves)\"\n"
-     << "plot 'tables_uniform.dat' using 1:2 with linespoints pt 5 lc rgb '#b2182b' title "
-        "'uniform, multilinear', '' using 1:3 with linespoints pt 4 lc rgb '#ef8a62' title "
-        "'uniform, cubic', 'tables_refined.dat' using 1:2 with linespoints pt 7 lc rgb '#2166ac' "
-        "title 'refined, multilinear', '' using 1:3 with linespoints pt 6 lc rgb '#67a9cf' title "
-        "'refined, cubic', 1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
-  DrawStudy(out, "tables.gp", gp.str(), "tables");
   md.Commit();
 }
 
+// One data file per kind (CPU s, MB, points, p95 multilinear and cubic in %), so lines connect.
+void WriteTablesData(const fs::path& out, const std::vector<TableRow>& rows) {
+  for (const char* kind : {kRefined, kMidpoints, kUniform}) {
+    OutputText dat(out / (std::string("tables_") + kind + ".dat"));
+    dat << "# cpu_s file_mb points p95_linear_percent p95_cubic_percent\n";
+    for (const TableRow& r : rows) {
+      if (r.kind != kind) continue;
+      dat << r.cpu_s << ' ' << r.bytes / 1e6 << ' ' << r.points << ' ' << 100 * r.force_p95[0]
+          << ' ' << 100 * r.force_p95[1] << '\n';
+    }
+    dat.Commit();
+  }
+}
+
+// p95 against CPU time (left) and file size (right); every kind that has rows.
+void DrawTables(const fs::path& out, const TablesStudy& study, const std::vector<TableRow>& rows) {
+  struct Series {
+    const char* kind;
+    const char* title;
+    const char* colours[2];
+  };
+  const Series series[] = {{kRefined, "refined (quantile stop)", {"#2166ac", "#67a9cf"}},
+                           {kMidpoints, "midpoint rule, its passes", {"#b2182b", "#ef8a62"}},
+                           {kUniform, "uniform", {"#4d9221", "#a1d76a"}}};
+  std::string plots[2];
+  const int x_column[2] = {1, 2};
+  for (int panel = 0; panel < 2; ++panel) {
+    for (const Series& s : series) {
+      if (std::none_of(rows.begin(), rows.end(),
+                       [&](const TableRow& r) { return r.kind == s.kind; }))
+        continue;
+      for (int mode = 0; mode < 2; ++mode) {
+        plots[panel] += std::string(plots[panel].empty() ? "plot " : ", ") + "'tables_" + s.kind +
+                        ".dat' using " + std::to_string(x_column[panel]) + ":" +
+                        std::to_string(4 + mode) + " with linespoints pt " +
+                        std::to_string(mode == 0 ? 7 : 6) + " lc rgb '" + s.colours[mode] +
+                        "' title '" + s.title + (mode == 0 ? ", multilinear'" : ", cubic'");
+      }
+    }
+    plots[panel] += ", 1 with lines dt 2 lc rgb '#404040' title '1 % of the load'\n";
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1400,620 font ',10'\nset output 'tables.png'\n"
+     << "set multiplot layout 1,2 title \"" << study.scene.filename().string()
+     << ": verified p95 force error against generation cost (" << study.samples
+     << " exact solves per table)\"\n"
+     << "set logscale xy\nset grid\nset key top right\nset yrange [0.1:*]\n"
+     << "set ylabel 'p95 force error, % of the local wheel load'\n"
+     << "set xlabel 'generation CPU time (s, all threads)'\n"
+     << plots[0] << "set xlabel 'table file (MB)'\n"
+     << plots[1] << "unset multiplot\n";
+  DrawStudy(out, "tables.gp", gp.str(), "tables");
+}
+
+void WriteTablesReport(const fs::path& out, const TablesStudy& study,
+                       const std::vector<TableRow>& rows) {
+  WriteTablesCsv(out, rows);
+  WriteTablesData(out, rows);
+  DrawTables(out, study, rows);
+  WriteTablesMarkdown(out, study, rows);
+}
+
+void SayRow(const TableRow& row) {
+  std::cerr << "tables study: " << RowLabel(row) << ": " << row.points << " points (" << row.axes
+            << "), " << row.cpu_s << " CPU s, p95 " << 100 * row.force_p95[0] << " % (cubic "
+            << 100 * row.force_p95[1] << " %) of the load\n";
+}
+
 // One table of the study: generated, timed and verified; *axes receives its nodes.
-TableRow GenerateAndMeasure(const Scene& scene, const std::string& kind, double target,
-                            const fs::path& path, int samples, std::uint64_t seed, int threads,
+TableRow GenerateAndMeasure(const Scene& scene, const char* kind, double target,
+                            const fs::path& path, const TablesStudy& study,
                             std::vector<SceneAxis>* axes) {
   const auto t0 = std::chrono::steady_clock::now();
-  const GenerateSummary summary = Generate(scene, path, threads);
+  const GenerateSummary summary = Generate(scene, path, study.threads, false);
   TableRow row;
   row.kind = kind;
   row.target = target;
   row.points = summary.points;
   row.generate_s = Seconds(t0);
+  row.cpu_s = summary.cpu_seconds;
   row.axes = AxesText(summary.axes);
   *axes = summary.axes;
-  Measure(path, samples, seed, threads, &row);
-  std::cerr << "tables study: " << kind << " (target " << target << "): " << row.points
-            << " points (" << row.axes << "), p95 " << 100 * row.force_p95[0] << " % of the load\n";
+  Measure(path, study, &row);
+  SayRow(row);
   return row;
 }
 
-// Refined tables at several targets and, for each, a uniform table with the same node count
-// per axis over the same ranges; all verified at the same random points.
-int StudyTables(const fs::path& scene_path, const fs::path& out, const std::vector<double>& targets,
-                int samples, std::uint64_t seed, int threads) {
-  const Scene scene = LoadScene(scene_path);
-  fs::create_directories(out);
+// The scene with `[table.refine]`: a scene without one gets the section's defaults (which
+// outputs are refined and their targets), read by the scene parser as if the user had written an
+// empty section.
+Scene RefinableScene(const Scene& scene, const fs::path& path) {
+  if (scene.refine) return scene;
+  return ParseScene(scene.base.source_text + "\n[table.refine]\n", path.parent_path(),
+                    scene.base.source_name);
+}
+
+// The midpoint rule's refinement once, every pass's grid kept and measured: each is the table
+// that rule gives when its budget stops it there.
+std::vector<TableRow> MidpointRulePasses(const Scene& scene, const TablesStudy& study) {
+  Scene refined = scene;
+  refined.refine->load_fraction = study.midpoint_target;
+  refined.refine->quantile = 1.0;
+  const fs::path path =
+      study.out / ("midpoint_rule_" + std::to_string(study.midpoint_target) + ".h5");
+  const auto t0 = std::chrono::steady_clock::now();
+  const GenerateSummary summary = Generate(refined, path, study.threads, true);
+  const double wall = Seconds(t0);
   std::vector<TableRow> rows;
-  for (const double target : targets) {
+  for (std::size_t p = 0; p < summary.passes.size(); ++p) {
+    TableRow row;
+    row.kind = kMidpoints;
+    row.target = study.midpoint_target;
+    row.pass = static_cast<int>(p);
+    row.points = summary.passes[p].points;
+    row.cpu_s = summary.passes[p].cpu_seconds;
+    row.generate_s = wall * row.cpu_s / summary.cpu_seconds;  // the run's wall time, pro rata
+    Measure(path.string() + ".pass" + std::to_string(p) + ".h5", study, &row);
+    SayRow(row);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Refined tables at several targets and, with --uniform, for each a uniform table with the same
+// node count per axis over the same ranges; with --midpoint-rule the passes of that rule's run;
+// all verified at the same random points.
+int StudyTables(const TablesStudy& study) {
+  const Scene scene = RefinableScene(LoadScene(study.scene), study.scene);
+  fs::create_directories(study.out);
+  std::vector<TableRow> rows;
+  for (const double target : study.targets) {
     Scene refined = scene;
-    if (!refined.refine) refined.refine = RefineSettings{};
     refined.refine->load_fraction = target;
     std::vector<SceneAxis> nodes;
-    rows.push_back(GenerateAndMeasure(refined, "refined", target,
-                                      out / ("refined_" + std::to_string(target) + ".h5"), samples,
-                                      seed, threads, &nodes));
-    Scene uniform = scene;
-    uniform.refine.reset();
-    for (std::size_t a = 0; a < uniform.axes.size(); ++a) {
-      std::vector<double>& v = uniform.axes[a].values;
-      v = Linspace(v.front(), v.back(), nodes[a].values.size());
+    rows.push_back(GenerateAndMeasure(refined, kRefined, target,
+                                      study.out / ("refined_" + std::to_string(target) + ".h5"),
+                                      study, &nodes));
+    if (study.uniform) {
+      Scene uniform = scene;
+      uniform.refine.reset();
+      for (std::size_t a = 0; a < uniform.axes.size(); ++a) {
+        std::vector<double>& v = uniform.axes[a].values;
+        v = Linspace(v.front(), v.back(), nodes[a].values.size());
+      }
+      rows.push_back(GenerateAndMeasure(uniform, kUniform, target,
+                                        study.out / ("uniform_" + std::to_string(target) + ".h5"),
+                                        study, &nodes));
     }
-    rows.push_back(GenerateAndMeasure(uniform, "uniform", target,
-                                      out / ("uniform_" + std::to_string(target) + ".h5"), samples,
-                                      seed, threads, &nodes));
-    WriteTablesReport(out, scene_path, rows, samples, seed);  // after each pair: nothing lost
+    WriteTablesReport(study.out, study, rows);  // after each target: nothing lost
+  }
+  if (study.midpoint_target > 0.0) {
+    for (TableRow& row : MidpointRulePasses(scene, study)) rows.push_back(std::move(row));
+    WriteTablesReport(study.out, study, rows);
   }
   return kExitOk;
 }
@@ -441,29 +562,38 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
     }
   });
   auto* tables = study.add_subcommand(
-      "tables", "Table accuracy against size and time: refined and uniform tables of a scene");
-  auto scene = std::make_shared<std::string>();
-  auto targets = std::make_shared<std::vector<double>>(std::vector<double>{0.04, 0.02, 0.01});
-  auto samples = std::make_shared<int>(300);
-  auto seed = std::make_shared<std::uint64_t>(1);
-  auto threads = std::make_shared<int>(0);
-  auto tables_out = std::make_shared<std::string>("study-tables");
-  tables->add_option("SCENE", *scene, "Scene file (any; its axes give the ranges)")->required();
-  tables->add_option("--out", *tables_out, "Output directory (tables.csv, .png, .md, the tables)")
+      "tables",
+      "Table accuracy against generation time and size: refined tables of a scene at several "
+      "targets, the passes of the midpoint rule, uniform tables");
+  auto options = std::make_shared<TablesStudy>();
+  options->targets = {0.04, 0.02, 0.01};
+  options->out = "study-tables";
+  tables->add_option("SCENE", options->scene, "Scene file (any; its axes give the ranges)")
+      ->required();
+  tables->add_option("--out", options->out, "Output directory (tables.csv, .png, .md, the tables)")
       ->capture_default_str();
-  tables->add_option("--targets", *targets, "Refinement targets, fractions of the local wheel load")
+  tables
+      ->add_option("--targets", options->targets,
+                   "Refinement targets, fractions of the local wheel load")
       ->delimiter(',')
       ->capture_default_str();
-  tables->add_option("--samples", *samples, "Exact solves per table")
+  tables
+      ->add_option("--midpoint-rule", options->midpoint_target,
+                   "Also refine at this target until every sampled midpoint is within it "
+                   "(quantile 1) and measure every pass")
+      ->check(CLI::Range(1e-6, 1.0));
+  tables->add_flag("--uniform", options->uniform,
+                   "Also a uniform table with each refined table's node counts");
+  tables->add_option("--samples", options->samples, "Exact solves per table")
       ->check(GreaterThanZero())
       ->capture_default_str();
-  tables->add_option("--seed", *seed, "Seed of the sample points")->capture_default_str();
-  tables->add_option("--threads", *threads, "Worker threads; 0: all cores")
+  tables->add_option("--seed", options->seed, "Seed of the sample points")->capture_default_str();
+  tables->add_option("--threads", options->threads, "Worker threads; 0: all cores")
       ->check(ThreadCount(true))
       ->capture_default_str();
   tables->callback([=]() {
     try {
-      *exit_code = StudyTables(*scene, *tables_out, *targets, *samples, *seed, *threads);
+      *exit_code = StudyTables(*options);
     } catch (const Interrupted& e) {
       std::cerr << "wrc study tables: " << e.what() << '\n';
       *exit_code = kExitInterrupted;

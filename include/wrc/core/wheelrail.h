@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,25 @@
 #include "wrc/core/tangential_solver.h"
 
 namespace wrc {
+
+/// What a caller solving many cases of one wheel–rail pair (a table's grid, a sweep) lets the
+/// solver keep from one case to the next: the contact search of the last poses (successive
+/// grid points often differ in load and creepage only, and the search depends on the pose
+/// alone) and the placement check at the nominal pose (the same for every case of the pair).
+/// Entries are matched on every input they depend on, so a result never depends on whether a
+/// cache was passed or what it holds. One per thread: not safe for concurrent solves.
+class WheelRailCache {
+ public:
+  WheelRailCache();
+  ~WheelRailCache();
+  WheelRailCache(const WheelRailCache&) = delete;
+  WheelRailCache& operator=(const WheelRailCache&) = delete;
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
 
 /// Options of a wheel–rail solve.
 struct WheelRailOptions {
@@ -39,6 +59,8 @@ struct WheelRailOptions {
   /// With a prescribed fz: a wheelset height to start the iteration from (e.g. the solution of
   /// a neighbouring point of a sweep); NaN starts from first contact.
   double z_guess = std::numeric_limits<double>::quiet_NaN();
+  /// Work kept between solves of related cases (may be null); see WheelRailCache.
+  WheelRailCache* cache = nullptr;
 };
 
 /// One contact patch, in its contact reference frame (x along the track, s lateral along the

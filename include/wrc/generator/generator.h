@@ -74,9 +74,11 @@ std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult&
                                       PointStatus status);
 
 /// Solves the grid point at `indices` (one per axis) exactly as `wrc generate` does: z_guess
-/// warm-starts a prescribed-fz solve (NaN: cold start), exceptions become kError.
+/// warm-starts a prescribed-fz solve (NaN: cold start), exceptions become kError. `cache`
+/// (may be null): the calling thread's work kept between points (WheelRailCache).
 PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
-                            double z_guess = std::numeric_limits<double>::quiet_NaN());
+                            double z_guess = std::numeric_limits<double>::quiet_NaN(),
+                            WheelRailCache* cache = nullptr);
 
 /// When progress is shown on stderr.
 enum class ProgressMode {
@@ -127,6 +129,8 @@ struct GenerateOptions {
   /// Deterministic interruption for tests.
   std::size_t max_points = 0;
   MpiMode mpi = MpiMode::kAuto;
+  /// A refinement also writes the grid of every pass as a table, TABLE.h5.pass<P>.h5.
+  bool keep_passes = false;
 };
 
 /// What a GenerateTable() run did.
@@ -141,8 +145,16 @@ struct GenerateSummary {
   bool complete = false;
   bool interrupted = false;  ///< Stopped by a signal, cancel or max_points.
   double seconds = 0.0;      ///< Wall time of the run.
-  int threads = 0;           ///< Worker threads of this process.
-  int ranks = 1;             ///< MPI ranks that took part (1 without MPI).
+  double cpu_seconds = 0.0;  ///< CPU time of this process (all its threads) in the run.
+  /// A refinement on rank 0: per pass, its grid's points and this process's CPU seconds from
+  /// the start of the run (or of its resume) to the end of the pass.
+  struct Pass {
+    std::size_t points = 0;
+    double cpu_seconds = 0.0;
+  };
+  std::vector<Pass> passes;
+  int threads = 0;  ///< Worker threads of this process.
+  int ranks = 1;    ///< MPI ranks that took part (1 without MPI).
   /// False on MPI ranks other than 0: those neither write nor report, the caller stays quiet.
   bool is_root = true;
   /// Up to 10 failed points (flat row-major index and message), in index order.
