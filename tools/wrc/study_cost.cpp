@@ -471,11 +471,20 @@ Scene RefinableScene(const Scene& scene, const fs::path& path) {
                     scene.base.source_name);
 }
 
+// The scene refined to `target`, its absolute targets (z) scaled with the force target, so
+// that every target of a study is a target on every refined output.
+Scene AtTarget(const Scene& scene, double target) {
+  Scene refined = scene;
+  const double scale = target / scene.refine->load_fraction;
+  refined.refine->load_fraction = target;
+  for (auto& [name, value] : refined.refine->absolute) value *= scale;
+  return refined;
+}
+
 // The midpoint rule's refinement once, every pass's grid kept and measured: each is the table
 // that rule gives when its budget stops it there.
 std::vector<TableRow> MidpointRulePasses(const Scene& scene, const TablesStudy& study) {
-  Scene refined = scene;
-  refined.refine->load_fraction = study.midpoint_target;
+  Scene refined = AtTarget(scene, study.midpoint_target);
   refined.refine->quantile = 1.0;
   const fs::path path =
       study.out / ("midpoint_rule_" + std::to_string(study.midpoint_target) + ".h5");
@@ -506,8 +515,7 @@ int StudyTables(const TablesStudy& study) {
   fs::create_directories(study.out);
   std::vector<TableRow> rows;
   for (const double target : study.targets) {
-    Scene refined = scene;
-    refined.refine->load_fraction = target;
+    const Scene refined = AtTarget(scene, target);
     std::vector<SceneAxis> nodes;
     rows.push_back(GenerateAndMeasure(refined, kRefined, target,
                                       study.out / ("refined_" + std::to_string(target) + ".h5"),
