@@ -1,4 +1,4 @@
-// Process-to-process timing of `wrc solve` on the visible reference cases (issue: a full solve
+// Process-to-process timing of `wrc solve` on the visible reference cases (the aim: a full solve
 // at least 5x faster than CONTACT): each benchmark runs the front end on one case, as a user
 // would, and reports CONTACT's time from the reference JSON, the speed-up, and wrc's own stage
 // timings (`timing_s` of `wrc solve --json`, in ms, from the last run).

@@ -52,6 +52,11 @@ double OutputValue(const std::string& name, const WheelRailResult& r) {
   if (name == "n_patches") return static_cast<double>(r.patches.size());
   if (name == "z") return r.z;
   if (name == "t_gamma") return TGamma(r);
+  if (name == "frictional_power") {
+    double power = 0.0;
+    for (const PatchResult& patch : r.patches) power += FrictionalPower(patch, r.velocity);
+    return power;
+  }
   if (name == "pmax") {
     double pmax = 0.0;
     for (const PatchResult& patch : r.patches) pmax = std::max(pmax, patch.pmax);

@@ -4,7 +4,10 @@
 //   passes            the axes of every pass decided so far (hex floats, exact), rewritten
 //                     atomically after each decision: a resume continues at the last one;
 //   pass<P>.h5.journal  the grid journal of pass P (kept until pass P + 1 is complete);
-//   samples<P>.journal  the midpoint solves of pass P (same record format).
+//   samples<P>.journal  the midpoint solves of pass P (same record format);
+//   check.journal       the exact solves at the random states that judge every pass;
+//   check.h5            a pass's grid as a table, while cubic lookups judge it.
+// With --keep-passes, every pass's grid is also written as TABLE.h5.pass<P>.h5 (kept).
 
 #include <algorithm>
 #include <array>
@@ -918,6 +921,7 @@ class Refinement {
   bool QuantileMet(const ErrorEstimate& estimate, const Axes& axes, const TableData& data) const;
   double NextGrowth(const PassRecord& record) const;
   void KeepPass(int pass, const Axes& axes, const TableData& data);
+  TableProvenance Provenance() const;
   /// Every output at a point, interpolated as the table will be read.
   std::function<std::vector<double>(const std::vector<double>&)> Lookup(const Axes& axes,
                                                                         const TableData& data);
@@ -1115,12 +1119,18 @@ double Refinement::NextGrowth(const PassRecord& record) const {
 // `--keep-passes`: the grid of a pass as a table beside the output, so that one run gives the
 // accuracy and size of every coarser table it passed through.
 void Refinement::KeepPass(int pass, const Axes& axes, const TableData& data) {
+  const fs::path path = options_.output.string() + ".pass" + std::to_string(pass) + ".h5";
+  WriteTableFile(path, WithAxes(scene_, axes), data, Provenance());
+}
+
+// The provenance of a table written from a pass's grid (not the final one, which GenerateGrid
+// writes).
+TableProvenance Refinement::Provenance() const {
   TableProvenance provenance;
   provenance.rail_sha256 = Sha256FileHex(scene_.base.rail.path);
   provenance.wheel_sha256 = Sha256FileHex(scene_.base.wheel.path);
   provenance.created = IsoTimestampUtc();
-  const fs::path path = options_.output.string() + ".pass" + std::to_string(pass) + ".h5";
-  WriteTableFile(path, WithAxes(scene_, axes), data, provenance);
+  return provenance;
 }
 
 std::function<std::vector<double>(const std::vector<double>&)> Refinement::Lookup(
@@ -1137,13 +1147,9 @@ std::function<std::vector<double>(const std::vector<double>&)> Refinement::Looku
   // Cubic lookups anywhere in the grid are the runtime's: the grid written as a table in the
   // work directory and read back, so the estimate is what a simulator will get.
   const fs::path path = work_ / "check.h5";
-  TableProvenance provenance;
-  provenance.rail_sha256 = Sha256FileHex(scene_.base.rail.path);
-  provenance.wheel_sha256 = Sha256FileHex(scene_.base.wheel.path);
-  provenance.created = IsoTimestampUtc();
   std::error_code ignored;
   fs::remove(path, ignored);
-  WriteTableFile(path, WithAxes(scene_, axes), data, provenance);
+  WriteTableFile(path, WithAxes(scene_, axes), data, Provenance());
   auto table = std::make_shared<wrc::Table>(path.string());
   fs::remove(path, ignored);
   table->set_interpolation(wrc::Interpolation::kCubic);

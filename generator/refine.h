@@ -3,11 +3,12 @@
 // share with a plain `wrc generate` run.
 //
 // A refinement starts from the scene's axes and repeats: solve the whole tensor grid (a plain
-// grid run, journaled and resumable, points of earlier passes taken over), measure each axis
-// interval's interpolation error with exact solves at its midpoint (the other coordinates drawn
-// uniformly over their ranges and moved to the nearest node, so that the samples weigh the
+// grid run, journaled and resumable, points of earlier passes taken over), judge it at random
+// states against the stop rule (the quantile of the error within the target), measure each
+// axis interval's interpolation error with exact solves at its midpoint (the other coordinates
+// drawn uniformly over their ranges and moved to the nearest node, so that the samples weigh the
 // state space by volume, as a uniform verification does), and split the intervals whose error
-// exceeds the target, most harmful first, within the point budget. Nodes are only ever added,
+// exceeds the target, those that mend the most first, within the point budget. Nodes are only ever added,
 // so every node of a pass is a node of the next; the midpoint samples of a split interval are
 // nodes of the next pass too. The final grid is written as one ordinary table whose refine_*
 // attributes say how it was made.

@@ -329,6 +329,16 @@ void WarmTractions(const PatchCache& cache, const Grid& box, const std::vector<d
   }
 }
 
+// Tγ from the local fields: the work of the tractions on the rail against its slip relative to
+// the wheel, −Σ (p_x·s_x + p_s·s_s)·dA, per unit rolling distance (N). Tractions and slips of
+// an element share its local frame (x, s_j on the curved reference), so the sum needs no
+// rotation. Outside the box nothing is in contact.
+double SlipWork(const Grid& box, const TangentialSolution& ts) {
+  double work = 0.0;
+  for (std::size_t k = 0; k < ts.px.size(); ++k) work += ts.px[k] * ts.sx[k] + ts.py[k] * ts.sy[k];
+  return -work * box.element_area();
+}
+
 // The steady-rolling problem on the solve box under the pressure ns; fills the tangential
 // fields of `result`.
 TangentialSummary SolveTangentialOnBox(const PatchContext& ctx, const BoxOnGrid& on,
@@ -363,6 +373,7 @@ TangentialSummary SolveTangentialOnBox(const PatchContext& ctx, const BoxOnGrid&
   }
   result.tangential_iterations = summary.iterations;
   if (summary.status == SolverStatus::kNotConverged) result.status = SolverStatus::kNotConverged;
+  result.t_gamma_slip = SlipWork(on.box, ts);
   result.px = on.Expand(ts.px, on.Zeros());
   result.ps = on.Expand(ts.py, on.Zeros());
   // Outside the box nothing is in contact; the slip reported there is the rigid slip.

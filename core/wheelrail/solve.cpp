@@ -735,12 +735,17 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   result.roll = st.roll;
   result.yaw = st.yaw;
   result.omega = st.omega;
+  result.velocity = st.velocity;
   if (pb.mirror < 0.0) MirrorResult(result);
   return result;
 }
 
 double TGamma(const PatchResult& patch) {
   return -(patch.cksi * patch.fx + patch.ceta * patch.fs + patch.cphi * patch.mn);
+}
+
+double FrictionalPower(const PatchResult& patch, double velocity) {
+  return -1e-3 * velocity * patch.t_gamma_slip;  // N·mm/s to W
 }
 
 double TGamma(const WheelRailResult& result) {

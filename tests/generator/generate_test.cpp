@@ -192,6 +192,11 @@ TEST_F(GenerateTest, StoredValuesEqualDirectSolves) {
     EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "pmax")][point], pmax));
     EXPECT_TRUE(SameBits(stored.outputs[z_out][point], direct.z));
     EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "t_gamma")][point], TGamma(direct)));
+    double power = 0.0;
+    for (const PatchResult& patch : direct.patches)
+      power += FrictionalPower(patch, c.state.velocity);
+    EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "frictional_power")][point], power));
+    EXPECT_LE(power, 0.0);  // dissipated
     EXPECT_TRUE(direct.has_force_location);
   }
 }

@@ -78,7 +78,7 @@ inline std::string DefaultTinyTable() {
          "y = {from = 0.0, to = 5.0, step = 1.0}\n"
          "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"fx_ws\", \"fy_ws\", "
          "\"fz_ws\", \"n_patches\", \"contact_y\", \"contact_angle\", \"pmax\", \"z\", "
-         "\"t_gamma\"]";
+         "\"t_gamma\", \"frictional_power\"]";
 }
 
 using test_support::ReadFile;

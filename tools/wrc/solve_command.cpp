@@ -58,7 +58,11 @@ void PrintHuman(const json& j) {
               << " N, fs " << Human(p["fs"]) << " N, mn " << Human(p["mn"]) << " N.mm, pmax "
               << Human(p["pmax"]) << " N/mm2, contact " << p["n_contact"] << ", slip "
               << p["n_slip"];
-    if (p.contains("t_gamma")) std::cout << ", Tgamma " << Human(p["t_gamma"]) << " N";
+    if (p.contains("t_gamma")) {
+      std::cout << ", Tgamma " << Human(p["t_gamma"]) << " N (from the slip "
+                << Human(p["t_gamma_slip"]) << " N), frictional power "
+                << Human(p["frictional_power"]) << " W";
+    }
     std::cout << "\n";
   }
   std::cout << "time " << Human(j["timing_s"]["total"]) << " s\n";
@@ -128,7 +132,10 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
   json forces = Vec(r.force_T, "fx", "fy", "fz");
   forces.update(Vec(r.moment_T, "mx", "my", "mz"));
   json patches = json::array();
+  double t_gamma_slip = 0.0, frictional_power = 0.0;
   for (const PatchResult& p : r.patches) {
+    t_gamma_slip += p.t_gamma_slip;
+    frictional_power += FrictionalPower(p, r.velocity);
     patches.push_back(
         {{"fn", p.fn},
          {"fx", p.fx},
@@ -153,6 +160,8 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
          {"ceta", p.ceta},
          {"cphi", p.cphi},
          {"t_gamma", TGamma(p)},
+         {"t_gamma_slip", p.t_gamma_slip},
+         {"frictional_power", FrictionalPower(p, r.velocity)},
          {"iterations",
           {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
   }
@@ -163,6 +172,8 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
       {"rail_forces_track", forces},
       {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
       {"t_gamma", TGamma(r)},
+      {"t_gamma_slip", t_gamma_slip},
+      {"frictional_power", frictional_power},
       {"patches", patches},
       {"force_location", r.has_force_location ? json{{"x_tr", r.force_location_T(0)},
                                                      {"y_tr", r.force_location_T(1)},

@@ -113,9 +113,10 @@ inline constexpr std::string_view kSceneAxisNames[] = {
 
 /// Allowed output names (docs/reference/table-layout.md). `z` requires a prescribed fz.
 inline constexpr std::string_view kSceneOutputNames[] = {
-    "fx",    "fy",    "fz",     "mx",        "my",        "mz",
-    "fx_ws", "fy_ws", "fz_ws",  "n_patches", "contact_y", "contact_angle",
-    "pmax",  "z",     "t_gamma"};
+    "fx",    "fy",        "fz",        "mx",
+    "my",    "mz",        "fx_ws",     "fy_ws",
+    "fz_ws", "n_patches", "contact_y", "contact_angle",
+    "pmax",  "z",         "t_gamma",   "frictional_power"};
 
 /// True for the force outputs fx fy fz fx_ws fy_ws fz_ws, whose errors are measured relative to
 /// the local wheel load.

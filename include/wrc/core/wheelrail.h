@@ -79,7 +79,11 @@ struct PatchResult {
   Eigen::Vector2d reference_rail = Eigen::Vector2d::Zero();   ///< (y_r, z_r).
   Eigen::Vector3d reference_wheel = Eigen::Vector3d::Zero();  ///< (x_w, y_w, z_w).
   double approach = 0.0;  ///< Largest interpenetration of the undeformed surfaces, mm.
-  double cksi = 0.0, ceta = 0.0, cphi = 0.0;           ///< Creepages at the reference (planar).
+  double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< Creepages at the reference (planar).
+  /// Tγ from the local fields, −∫ p·s dA (tractions on the rail, its relative slip), N: the
+  /// frictional work per unit rolling distance; TGamma() is the same from the creepages and
+  /// forces. FrictionalPower() turns it into W.
+  double t_gamma_slip = 0.0;
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the reference, track frame.
   SolverStatus status = SolverStatus::kConverged;
@@ -111,6 +115,7 @@ struct WheelRailResult {
   SolverStatus status = SolverStatus::kConverged;
   std::string message;
   double y = 0.0, z = 0.0, roll = 0.0, yaw = 0.0, omega = 0.0;  ///< Wheelset state used.
+  double velocity = 0.0;                               ///< Forward velocity V of the state, mm/s.
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Total force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the rail origin, track frame.
   Eigen::Vector3d rail_origin_T = Eigen::Vector3d::Zero();  ///< The rail profile's origin.
@@ -138,6 +143,10 @@ struct WheelRailResult {
 double TGamma(const PatchResult& patch);
 /// Tγ summed over the patches of a solve, N.
 double TGamma(const WheelRailResult& result);
+/// The frictional power of a patch, W: ∫ p·ṡ dA with the tractions on the rail and its slip
+/// velocity relative to the wheel, ṡ = V·s (`velocity` V in mm/s), from the local fields;
+/// negative when it dissipates, as CONTACT prints FRIC.POWER. Equal to −V·t_gamma_slip.
+double FrictionalPower(const PatchResult& patch, double velocity);
 
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
 /// patches and solves them; with `state.fz` it finds the wheelset height z that gives that
