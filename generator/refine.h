@@ -8,9 +8,9 @@
 // axis interval's interpolation error with exact solves at its midpoint (the other coordinates
 // drawn uniformly over their ranges and moved to the nearest node, so that the samples weigh the
 // state space by volume, as a uniform verification does), and split the intervals whose error
-// exceeds the target, those that mend the most first, within the point budget. Nodes are only ever added,
-// so every node of a pass is a node of the next; the midpoint samples of a split interval are
-// nodes of the next pass too. The final grid is written as one ordinary table whose refine_*
+// exceeds the target, those that mend the most first, within the point budget. Nodes are only ever
+// added, so every node of a pass is a node of the next; the midpoint samples of a split interval
+// are nodes of the next pass too. The final grid is written as one ordinary table whose refine_*
 // attributes say how it was made.
 
 #include <cstdint>
