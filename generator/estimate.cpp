@@ -20,7 +20,7 @@ GenerateEstimate EstimateGeneration(const Scene& scene, int runs, int run_length
   double total = 0.0;
   for (int run = 0; run < runs; ++run) {
     // A place on the grid; the run goes along the last axis, as the generator's segments do,
-    // so that the warm start of z counts as it will.
+    // so that the warm start of z and the segment's cache count as they will.
     std::vector<std::size_t> indices(shape.size());
     for (std::size_t a = 0; a < shape.size(); ++a) {
       indices[a] = std::uniform_int_distribution<std::size_t>(0, shape[a] - 1)(rng);
@@ -30,8 +30,9 @@ GenerateEstimate EstimateGeneration(const Scene& scene, int runs, int run_length
         std::min<std::size_t>(static_cast<std::size_t>(run_length), shape[last]);
     indices[last] = std::min(indices[last], shape[last] - length);
     double z_guess = std::numeric_limits<double>::quiet_NaN();
+    WheelRailCache cache;
     for (std::size_t k = 0; k < length; ++k, ++indices[last]) {
-      const PointResult r = SolveScenePoint(scene, indices, z_guess);
+      const PointResult r = SolveScenePoint(scene, indices, z_guess, &cache);
       z_guess = r.z;
       ++estimate.solves;
       if (r.status == PointStatus::kNotConverged || r.status == PointStatus::kError) {

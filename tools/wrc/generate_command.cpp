@@ -116,12 +116,21 @@ void PrintEstimate(const std::string& scene_path, const Scene& scene, int thread
             << (workers == 1 ? " thread" : " threads") << '\n';
   if (scene.refine) {
     const double budget = static_cast<double>(e.max_points) * kRefinementSolvesPerPoint * per_point;
-    std::cout << "  the refinement starts from that grid and places nodes until every sampled "
-                 "midpoint meets its target or the budget of "
-              << e.max_points << " points is spent; the whole budget with its midpoint solves "
-              << "takes " << Duration(budget) << " at the grid's solve time, up to "
+    const double quantile = scene.refine->quantile;
+    std::cout << "  the refinement starts from that grid and places nodes until "
+              << (quantile < 1.0 ? std::to_string(static_cast<int>(std::lround(100 * quantile))) +
+                                       " % of random states meet the target"
+                                 : std::string("every sampled midpoint meets its target"))
+              << " or the budget of " << e.max_points
+              << " points is spent; the whole budget with its midpoint solves would take "
+              << Duration(budget) << " at the grid's solve time, up to "
               << Duration(kRefinedSolveRatio * budget)
-              << " where the nodes gather at the harder states\n";
+              << " where the nodes gather at the harder states";
+    if (quantile < 1.0) {
+      std::cout << " (an upper bound: the quantile is usually met well before the budget, on "
+                   "tables/mbench.toml at 239 400 of 800 000 points)";
+    }
+    std::cout << '\n';
   }
 }
 
