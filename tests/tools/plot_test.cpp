@@ -125,6 +125,29 @@ TEST_F(Plot, PatchMapsAreTheSolversFields) {
   EXPECT_NEAR(fn, summary["patches"][0]["fn"].get<double>(), 1e-7 * fn);
 }
 
+// --frictional-power: a fifth panel whose data, the dissipated power per area, integrates to the
+// patch's frictional power from the solver (−frictional_power, W) to the printed digits; only
+// for wheel–rail solves.
+TEST_F(Plot, PatchFrictionalPowerMapIntegratesToTheSolversPower) {
+  ASSERT_EQ(Run("plot patch mbench.toml --frictional-power --out power"), 0) << Err();
+  ExpectPicture(dir_ / "power" / "patch1.png");
+  const auto map = Numbers(dir_ / "power" / "patch1_map.dat");
+  const auto summary = nlohmann::json::parse(ReadFile(dir_ / "power" / "summary.json"));
+  ASSERT_GT(map.size(), 20u);
+  ASSERT_EQ(map[0].size(), 11u);
+  double power = 0.0;
+  for (const auto& element : map) {
+    EXPECT_GE(element[10], -1e-9) << "power is dissipated, never gained";
+    power += element[10] * 1.0 * 1.0;  // the fixture's square 1 mm elements
+  }
+  const double solver = summary["patches"][0]["frictional_power"].get<double>();
+  ASSERT_LT(solver, 0.0);
+  EXPECT_NEAR(power, -solver, 1e-7 * std::fabs(solver));
+  ASSERT_EQ(Run("solve hertz.toml --out hertz-solved"), 0) << Err();
+  EXPECT_EQ(Run("plot patch --from hertz-solved --frictional-power --out h"), 2);
+  EXPECT_NE(Err().find("--frictional-power needs a wheel"), std::string::npos) << Err();
+}
+
 TEST_F(Plot, PatchFromASolveDirectoryOfEitherKind) {
   ASSERT_EQ(Run("solve hertz.toml --out hertz-solved"), 0) << Err();
   ASSERT_EQ(Run("plot patch --from hertz-solved --out hertz-plot"), 0) << Err();

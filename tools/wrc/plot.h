@@ -12,11 +12,13 @@ namespace wrc::cli {
 /// The files a plot wrote, in the order written; printed one per line on stdout.
 using WrittenFiles = std::vector<std::filesystem::path>;
 
-/// Maps of each contact patch of a solve in `from` (a `wrc solve --out` directory), into `out`.
-WrittenFiles PlotPatchesFrom(const std::filesystem::path& from, const std::filesystem::path& out);
+/// Maps of each contact patch of a solve in `from` (a `wrc solve --out` directory), into `out`;
+/// with `power` also the dissipated frictional power per area (wheel–rail solves only).
+WrittenFiles PlotPatchesFrom(const std::filesystem::path& from, const std::filesystem::path& out,
+                             bool power = false);
 /// Solves `case_path`, writes the `wrc solve --out` files into `out`, and plots them there.
 WrittenFiles PlotPatchesOfCase(const std::filesystem::path& case_path,
-                               const std::filesystem::path& out);
+                               const std::filesystem::path& out, bool power = false);
 
 /// Wheel and rail of a wheel–rail case in place at its solved pose, with the contact patches
 /// and the gap between the profiles.

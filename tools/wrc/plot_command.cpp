@@ -111,7 +111,11 @@ void AddPatch(CLI::App& plot, int* exit_code) {
   auto case_path = std::make_shared<std::string>();
   auto from = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>("plot-patch");
+  auto power = std::make_shared<bool>(false);
   cmd->add_option("CASE", *case_path, "Case file to solve (TOML)");
+  cmd->add_flag("--frictional-power", *power,
+                "Also map where the frictional work is done: the dissipated power per area, "
+                "W/mm2 (wheel-rail solves)");
   cmd->add_option("--from", *from, "Plot a `wrc solve --out DIR` directory instead of solving");
   cmd->add_option("--out", *out, "Output directory (PNG, data, scripts)")->capture_default_str();
   cmd->callback([=]() {
@@ -119,7 +123,8 @@ void AddPatch(CLI::App& plot, int* exit_code) {
       if (case_path->empty() == from->empty()) {
         throw InputError("give either a case file or --from DIR (a `wrc solve --out` directory)");
       }
-      return from->empty() ? PlotPatchesOfCase(*case_path, *out) : PlotPatchesFrom(*from, *out);
+      return from->empty() ? PlotPatchesOfCase(*case_path, *out, *power)
+                           : PlotPatchesFrom(*from, *out, *power);
     });
   });
 }

@@ -36,6 +36,16 @@ struct PatchFields {
   // Rigid slip (wheel–rail files); half-space files have only the total slip, drawn instead.
   std::vector<double> wx, ws;
   bool rigid = true;
+  // The actual slip (wheel–rail files: sx, ss beside the rigid slip) and the rolling velocity
+  // (mm/s, from summary.json), for the frictional power; NaN velocity: not drawn.
+  std::vector<double> sx, ss;
+  double velocity = NAN;
+  // Dissipated frictional power per area at element k, W/mm²: −V·(px·sx + ps·ss)/1000, the
+  // density whose integral with the opposite sign is the patch's frictional_power.
+  double PowerDensity(std::size_t k) const {
+    return -1e-3 * velocity * (px[k] * sx[k] + ps[k] * ss[k]);
+  }
+  bool HasPower() const { return std::isfinite(velocity) && !sx.empty(); }
 };
 
 // The column of the first present name, for files of either kind (s/y, ps/py, ...).
@@ -58,7 +68,14 @@ PatchFields ReadFields(const fs::path& path) {
     cwx = AnyColumn(csv, {"sx"});
     cws = AnyColumn(csv, {"ss", "sy"});
   }
+  // Wheel–rail files carry the actual slip beside the rigid one.
+  const int csx = f.rigid ? csv.FirstColumn({"sx"}) : -1,
+            css = f.rigid ? csv.FirstColumn({"ss"}) : -1;
   for (const auto& row : csv.rows) {
+    if (csx >= 0 && css >= 0) {
+      f.sx.push_back(row[csx]);
+      f.ss.push_back(row[css]);
+    }
     f.nx = std::max(f.nx, static_cast<int>(row[ci]) + 1);
     f.ny = std::max(f.ny, static_cast<int>(row[cj]) + 1);
     f.x.push_back(row[cx]);
@@ -83,18 +100,22 @@ PatchFields ReadFields(const fs::path& path) {
 int ArrowStride(const PatchFields& f) { return std::max(1, (std::max(f.nx, f.ny) + 15) / 16); }
 
 // The grid as gnuplot's image and pm3d read it: one line per element, a blank line after each
-// row j; x s pn |p_t| px ps state |w| wx ws.
+// row j; x s pn |p_t| px ps state |w| wx ws, and the frictional power density (W/mm²) when the
+// fields give it.
 void WriteMap(const fs::path& path, const PatchFields& f) {
   OutputText dat(path);
   dat << "# x_mm s_mm pn_N/mm2 pt_N/mm2 px_N/mm2 ps_N/mm2 state "
-      << (f.rigid ? "w wx ws (rigid slip)" : "s sx ss (slip)") << '\n';
+      << (f.rigid ? "w wx ws (rigid slip)" : "s sx ss (slip)")
+      << (f.HasPower() ? " power_W/mm2 (dissipated)" : "") << '\n';
   dat.precision(10);
   for (int j = 0; j < f.ny; ++j) {
     for (int i = 0; i < f.nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * f.nx + i;
       dat << f.x[k] << ' ' << f.s[k] << ' ' << f.pn[k] << ' ' << std::hypot(f.px[k], f.ps[k]) << ' '
           << f.px[k] << ' ' << f.ps[k] << ' ' << f.state[k] << ' ' << std::hypot(f.wx[k], f.ws[k])
-          << ' ' << f.wx[k] << ' ' << f.ws[k] << '\n';
+          << ' ' << f.wx[k] << ' ' << f.ws[k];
+      if (f.HasPower()) dat << ' ' << f.PowerDensity(k);
+      dat << '\n';
     }
     dat << '\n';
   }
@@ -159,15 +180,24 @@ std::string Panel(const std::string& stem, const std::string& title, int column,
   return gp.str();
 }
 
-std::string PatchScript(const std::string& stem, const PatchFields& f, const std::string& title) {
+// The dissipated frictional power over the patch, W (the patch's −frictional_power).
+double TotalPower(const PatchFields& f) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < f.x.size(); ++k) sum += f.PowerDensity(k);
+  return sum * f.dx * f.ds;
+}
+
+std::string PatchScript(const std::string& stem, const PatchFields& f, const std::string& title,
+                        bool power) {
   const double x0 = f.x.front() - 0.5 * f.dx, x1 = f.x.back() + 0.5 * f.dx;
   const double s0 = f.s.front() - 0.5 * f.ds, s1 = f.s.back() + 0.5 * f.ds;
   // Panels of equal aspect laid out 2 × 2; the canvas takes the patch's shape.
   const double aspect = std::clamp((s1 - s0) / (x1 - x0), 0.3, 3.0);
   // Each panel about 560 px wide; its height follows, plus title, labels and the colour box.
   const int width = 1300;
+  const int rows = power ? 3 : 2;
   const int height =
-      static_cast<int>(std::clamp(140.0 + 2.0 * (470.0 * aspect + 80.0), 500.0, 1600.0));
+      static_cast<int>(std::clamp(140.0 + rows * (470.0 * aspect + 80.0), 500.0, 800.0 * rows));
   const std::string arrow_style = " with vectors head size graph 0.012,25 lc rgb '#000000' notitle";
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size " << width << ',' << height << " font ',10'\n"
@@ -176,7 +206,7 @@ std::string PatchScript(const std::string& stem, const PatchFields& f, const std
      << s0 << ':' << s1 << "]\n"
      << "set xlabel 'x, mm (rolling direction)'\nset ylabel 's, mm (lateral, along the "
         "contact)'\nset tics out\n"
-     << "set multiplot layout 2,2 title \"" << title << "\" font ',11'\n"
+     << "set multiplot layout " << rows << ",2 title \"" << title << "\" font ',11'\n"
      << Panel(stem, "pressure pn, N/mm2", 3,
               "set palette defined (0 '#ffffff', 1 '#fee391', 2 '#fe9929', 3 '#cc4c02', 4 "
               "'#662506')\n",
@@ -192,19 +222,25 @@ std::string PatchScript(const std::string& stem, const PatchFields& f, const std
      << Panel(stem,
               f.rigid ? "rigid slip |(wx, ws)|, - (arrows: direction)"
                       : "slip |(sx, sy)|, - (arrows: direction)",
-              8, "", "", ", '" + stem + "_arrows.dat' using 1:2:5:6" + arrow_style)
-     << "unset multiplot\n";
+              8, "", "", ", '" + stem + "_arrows.dat' using 1:2:5:6" + arrow_style);
+  if (power) {
+    gp << Panel(stem,
+                "dissipated frictional power, W/mm2 (total " + Short(TotalPower(f), 4) + " W)", 11,
+                "set palette defined (0 '#ffffff', 1 '#fcbba1', 2 '#ef3b2c', 3 '#67000d')\n",
+                "set cbrange [0:*]\n", "");
+  }
+  gp << "unset multiplot\n";
   return gp.str();
 }
 
 // Draws one patch: map and arrow data, script and PNG, named after `stem`.
 void DrawPatch(const fs::path& out, const std::string& stem, const PatchFields& f,
-               const std::string& title, WrittenFiles* written) {
+               const std::string& title, bool power, WrittenFiles* written) {
   WriteMap(out / (stem + "_map.dat"), f);
   WriteArrows(out / (stem + "_arrows.dat"), f);
   written->push_back(out / (stem + "_map.dat"));
   written->push_back(out / (stem + "_arrows.dat"));
-  if (!RunGnuplot(out, stem + ".gp", PatchScript(stem, f, title))) {
+  if (!RunGnuplot(out, stem + ".gp", PatchScript(stem, f, title, power))) {
     std::cerr << "wrc plot patch: gnuplot is not installed (Debian: gnuplot-nox): "
               << "no picture, the data is written\n";
     return;
@@ -229,7 +265,7 @@ json ReadSummary(const fs::path& from) {
 
 }  // namespace
 
-WrittenFiles PlotPatchesFrom(const fs::path& from, const fs::path& out) {
+WrittenFiles PlotPatchesFrom(const fs::path& from, const fs::path& out, bool power) {
   const json summary = ReadSummary(from);
   if (!summary.contains("patches") || !summary["patches"].is_array()) {
     throw InputError((from / "summary.json").string() + ": no list of patches");
@@ -243,16 +279,28 @@ WrittenFiles PlotPatchesFrom(const fs::path& from, const fs::path& out) {
               << "): nothing to draw\n";
   }
   const bool halfspace = fs::exists(from / "fields.csv");
+  const json& wheelset = summary.contains("wheelset") ? summary["wheelset"] : json();
+  const double velocity =
+      wheelset.is_object() && wheelset.contains("velocity") && wheelset["velocity"].is_number()
+          ? wheelset["velocity"].get<double>()
+          : NAN;
+  if (power && (halfspace || !std::isfinite(velocity))) {
+    throw InputError((from / "summary.json").string() +
+                     ": --frictional-power needs a wheel–rail solve written by this version of "
+                     "`wrc solve --out` (its slip fields and rolling velocity)");
+  }
   for (std::size_t n = 0; n < patches.size(); ++n) {
     const std::string stem = "patch" + std::to_string(n + 1);
     const fs::path fields = from / (halfspace ? "fields.csv" : stem + "_fields.csv");
-    DrawPatch(out, stem, ReadFields(fields), PatchTitle(patches[n], static_cast<int>(n + 1)),
+    PatchFields f = ReadFields(fields);
+    f.velocity = velocity;
+    DrawPatch(out, stem, f, PatchTitle(patches[n], static_cast<int>(n + 1)), power && f.HasPower(),
               &written);
   }
   return written;
 }
 
-WrittenFiles PlotPatchesOfCase(const fs::path& case_path, const fs::path& out) {
+WrittenFiles PlotPatchesOfCase(const fs::path& case_path, const fs::path& out, bool power) {
   const auto t0 = std::chrono::steady_clock::now();
   const Case c = LoadCase(case_path);
   auto seconds = [&] {
@@ -274,7 +322,7 @@ WrittenFiles PlotPatchesOfCase(const fs::path& case_path, const fs::path& out) {
       if (!r.patches[n].curve_y.empty()) written.push_back(out / (stem + "_curve.csv"));
     }
   }
-  const WrittenFiles drawn = PlotPatchesFrom(out, out);
+  const WrittenFiles drawn = PlotPatchesFrom(out, out, power);
   written.insert(written.end(), drawn.begin(), drawn.end());
   return written;
 }
