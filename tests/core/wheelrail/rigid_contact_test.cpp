@@ -109,6 +109,62 @@ TEST(RigidContact, OfAConeOnACrownGivesDrOfTheCone) {
   std::filesystem::remove_all(dir);
 }
 
+// Circular arcs in conformal contact: a wheel profile of radius Rw = 200 mm (centred on its
+// origin) on a rail crown of Rr = 80 mm whose centre lies d = 4 mm to the side, both written z
+// up. Two arcs touch where their slopes agree, on the line through their centres: with the
+// wheel's centre c = d + y from the crown's, sin φ = −c/(Rw − Rr), and the wheel touches
+// Rw·(1 − cos φ) below its apex, so r(y) = const + Rw·(1 − cos φ(y)) and
+// Δr(y) = r(y) − r(−y) = Rw·(cos φ(−y) − cos φ(y)) exactly; for small y the slope is
+// −2·Rw·tan φ0/(Rw − Rr), twice the classic conformal-contact conicity (φ0 = φ(0)).
+TEST(RigidContact, OfCircularArcsGivesTheirClosedForm) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wrc_arcs_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  constexpr double kWheel = 200.0, kRail = 80.0, kOffset = 4.0;
+  {
+    std::ofstream wheel(dir / "arc.csv"), rail(dir / "crown.csv");
+    for (int i = 0; i <= 240; ++i) {
+      const double y = -60.0 + 0.5 * i;
+      wheel << y << ' ' << std::sqrt(kWheel * kWheel - y * y) - kWheel << '\n';
+    }
+    for (int i = 0; i <= 140; ++i) {
+      const double y = -35.0 + 0.5 * i;
+      rail << y << ' ' << std::sqrt(kRail * kRail - (y + kOffset) * (y + kOffset)) - kRail << '\n';
+    }
+  }
+  wrc::Case c = Wheel("A", 460.0);
+  c.rail.path = dir / "crown.csv";
+  c.wheel.path = dir / "arc.csv";
+  c.rail.spline = c.wheel.spline = nullptr;
+  c.rail.mirror_z = c.wheel.mirror_z = wrc::MirrorZ::kYes;
+  const auto angle = [&](double y) { return std::asin(-(kOffset + y) / (kWheel - kRail)); };
+  wrc::RollingRadiusDifference measured, exact;
+  for (int i = -40; i <= 40; ++i) {
+    const double y = 0.1 * i;
+    const auto r = wrc::RigidContactAt(c, {y, 0.0, 0.0, 0.0}, 0.01);
+    const auto l = wrc::RigidContactAt(c, {-y, 0.0, 0.0, 0.0}, 0.01);
+    ASSERT_TRUE(r.found && l.found);
+    measured.y.push_back(y);
+    measured.dr.push_back(r.rolling_radius - l.rolling_radius);
+    exact.y.push_back(y);
+    exact.dr.push_back(kWheel * (std::cos(angle(-y)) - std::cos(angle(y))));
+    // Conformal contact leaves the gap flat (curvature 1/Rr − 1/Rw = 0.0075/mm), so the
+    // parabola through its 0.01 mm samples places the contact to a few 1e-4 mm, which moves r
+    // by tan φ (under 0.08) times that, Δr within 5e-5 mm, and turns the crown's normal by that
+    // over Rr, the angle within 1e-5 rad.
+    EXPECT_NEAR(measured.dr.back(), exact.dr.back(), 5e-5) << y;
+    EXPECT_NEAR(std::fabs(r.contact_angle), std::fabs(angle(y)), 1e-5) << y;
+  }
+  const double slope = -2.0 * kWheel * std::tan(angle(0.0)) / (kWheel - kRail);
+  EXPECT_NEAR((measured.dr[41] - measured.dr[39]) / 0.2, slope, 1e-4 * std::fabs(slope));
+  for (double amplitude : {1.0, 3.0}) {  // Δr within 5e-5 mm of 0.1–0.4 mm: 1e-4 relative
+    const double expected = wrc::EquivalentConicityAt(exact, amplitude).tan_gamma_e;
+    EXPECT_NEAR(wrc::EquivalentConicityAt(measured, amplitude).tan_gamma_e, expected,
+                1e-4 * expected);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // With the roll solved both wheels touch together: equal first-touch heights. The pair E1 is
 // symmetric, so the roll is 0 at y = 0 and odd in y; on the treads it is a fraction of a
 // milliradian (Δr over the 1500 mm base), in flange contact several.
