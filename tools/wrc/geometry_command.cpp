@@ -143,6 +143,7 @@ void DrawGeometry(const fs::path& out) {
       "plot 'geometry.csv' using 1:($5-$6) with lines notitle\n"
       "set ylabel 'contact point on the rail, mm (track frame)'\n"
       "set title 'Contact points (|y|, right and left rail)'\n"
+      "set key below\n"  // beside no data, whatever the pair
       "plot 'geometry.csv' using 1:7 with points pt 7 ps 0.3 title 'right', "
       "'' using 1:(-$8) with points pt 7 ps 0.3 title 'left (mirrored)'\n"
       "set xlabel 'amplitude ŷ, mm'\nset ylabel 'tan γe'\n"
