@@ -170,6 +170,20 @@ void Remap(const Grid& a, const std::vector<double>& from, const Grid& b, std::v
 
 }  // namespace
 
+namespace {
+
+// Tγ from the local fields: the work of the tractions on the rail against its slip relative to
+// the wheel, −Σ (p_x·s_x + p_s·s_s)·dA, per unit rolling distance (N). Tractions and slips of
+// an element share its local frame (x, s_j on the curved reference), so the sum needs no
+// rotation. Outside the box nothing is in contact.
+double SlipWork(const Grid& box, const TangentialSolution& ts) {
+  double work = 0.0;
+  for (std::size_t k = 0; k < ts.px.size(); ++k) work += ts.px[k] * ts.sx[k] + ts.py[k] * ts.sy[k];
+  return -work * box.element_area();
+}
+
+}  // namespace
+
 // Dissimilar bodies (K != 0): normal and tangential problems coupled (Panagiotopoulos process,
 // coupled_solver.h) on the whole potential contact area. The tangential tractions then move
 // the normal displacements, so the interpenetration no longer bounds the contact and the solve
@@ -201,6 +215,7 @@ void SolveCoupledOnGrid(const PatchContext& ctx, const Grid& grid, const std::ve
   result.normal_iterations = summary.normal_iterations;
   result.tangential_iterations = summary.tangential_iterations;
   result.status = summary.status;
+  result.t_gamma_slip = SlipWork(grid, sol.tangential);
   result.pn = std::move(sol.normal.pressure);
   result.pmax = sol.normal.pmax;
   result.n_contact = sol.normal.n_contact;
@@ -327,16 +342,6 @@ void WarmTractions(const PatchCache& cache, const Grid& box, const std::vector<d
       ts.py[k] *= ratio;
     }
   }
-}
-
-// Tγ from the local fields: the work of the tractions on the rail against its slip relative to
-// the wheel, −Σ (p_x·s_x + p_s·s_s)·dA, per unit rolling distance (N). Tractions and slips of
-// an element share its local frame (x, s_j on the curved reference), so the sum needs no
-// rotation. Outside the box nothing is in contact.
-double SlipWork(const Grid& box, const TangentialSolution& ts) {
-  double work = 0.0;
-  for (std::size_t k = 0; k < ts.px.size(); ++k) work += ts.px[k] * ts.sx[k] + ts.py[k] * ts.sy[k];
-  return -work * box.element_area();
 }
 
 // The steady-rolling problem on the solve box under the pressure ns; fills the tangential
