@@ -66,7 +66,7 @@ const std::vector<SectionSchema>& CaseSchema() {
         {"flange_back_distance", kWR},
         {"flange_back_position", kWR},
         {"nominal_radius", kWR}}},
-      {"material", kBoth, {{"poisson", kBoth}, {"shear_modulus", kBoth}}},
+      {"material", kBoth, {{"poisson", kBoth}, {"shear_modulus", kBoth}, {"shear_yield", kWR}}},
       {"friction", kBoth, {{"mu", kBoth}, {"alpha_deg", kBoth}}},
       {"grid", kBoth, {{"dx", kBoth}, {"ds", kWR}, {"dy", kHS}, {"x", kHS}, {"y", kHS}}},
       {"method",
@@ -434,6 +434,18 @@ void ReadMaterials(const Section& section, Case& result) {
   if (!poisson.empty()) {
     result.rail_material.poisson = poisson[0].value;
     result.wheel_material.poisson = poisson[1].value;
+  }
+  // Rail and wheel steels yield in shear at 200–600 N/mm²; the bounds only keep out other units.
+  const std::vector<NumberAt> yield = ReadPerBody(section, "shear_yield");
+  for (const NumberAt& value : yield) {
+    if (!(value.value >= 1.0 && value.value <= 1e4)) {
+      section.file().Fail(value.node, value.path,
+                          "must be between 1 and 10000 N/mm² (the yield limit in pure shear)");
+    }
+  }
+  if (!yield.empty()) {
+    result.rail_material.shear_yield = yield[0].value;
+    result.wheel_material.shear_yield = yield[1].value;
   }
   if (!modulus.empty()) {
     result.rail_material.shear_modulus = modulus[0].value;

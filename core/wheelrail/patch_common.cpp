@@ -219,6 +219,7 @@ void SolveCoupledOnGrid(const PatchContext& ctx, const Grid& grid, const std::ve
   result.pn = std::move(sol.normal.pressure);
   result.pmax = sol.normal.pmax;
   result.n_contact = sol.normal.n_contact;
+  result.contact_area = result.n_contact * grid.element_area();
   result.wx = wx;
   result.ws = wy;
   result.px = std::move(sol.tangential.px);
@@ -313,6 +314,7 @@ NormalSummary SolveNormalOnBox(const PatchContext& ctx, const BoxOnGrid& on, boo
   result.pn = on.Expand(ns.pressure, on.Zeros());
   result.pmax = ns.pmax;
   result.n_contact = ns.n_contact;
+  result.contact_area = result.n_contact * on.box.element_area();
   return normal;
 }
 

@@ -736,12 +736,22 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   result.yaw = st.yaw;
   result.omega = st.omega;
   result.velocity = st.velocity;
+  for (PatchResult& patch : result.patches) {
+    patch.fi_surf_rail = SurfaceFatigueIndex(patch, c.rail_material.shear_yield);
+    patch.fi_surf_wheel = SurfaceFatigueIndex(patch, c.wheel_material.shear_yield);
+  }
   if (pb.mirror < 0.0) MirrorResult(result);
   return result;
 }
 
 double TGamma(const PatchResult& patch) {
   return -(patch.cksi * patch.fx + patch.ceta * patch.fs + patch.cphi * patch.mn);
+}
+
+double SurfaceFatigueIndex(const PatchResult& patch, double shear_yield) {
+  if (!(patch.fn > 0.0) || !(patch.pmax > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  const double traction = std::hypot(patch.fx, patch.fs) / patch.fn;
+  return traction - shear_yield / patch.pmax;  // NaN when k is NaN
 }
 
 double FrictionalPower(const PatchResult& patch, double velocity) {

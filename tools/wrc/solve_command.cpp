@@ -63,10 +63,18 @@ void PrintHuman(const json& j) {
                 << Human(p["t_gamma_slip"]) << " N), frictional power "
                 << Human(p["frictional_power"]) << " W";
     }
+    for (const char* body : {"rail", "wheel"}) {
+      const std::string key = std::string("fi_surf_") + body;
+      if (p.contains(key) && p[key].is_number()) {
+        std::cout << ", FI_surf " << body << ' ' << Human(p[key]);
+      }
+    }
     std::cout << "\n";
   }
   std::cout << "time " << Human(j["timing_s"]["total"]) << " s\n";
 }
+
+json NumberOrNull(double value) { return std::isfinite(value) ? json(value) : json(); }
 
 json Vec(const Eigen::Vector3d& v, const char* a, const char* b, const char* c) {
   return {{a, v(0)}, {b, v(1)}, {c, v(2)}};
@@ -162,6 +170,9 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
          {"t_gamma", TGamma(p)},
          {"t_gamma_slip", p.t_gamma_slip},
          {"frictional_power", FrictionalPower(p, r.velocity)},
+         {"contact_area", p.contact_area},
+         {"fi_surf_rail", NumberOrNull(p.fi_surf_rail)},
+         {"fi_surf_wheel", NumberOrNull(p.fi_surf_wheel)},
          {"iterations",
           {{"normal", p.normal_iterations}, {"tangential", p.tangential_iterations}}}});
   }

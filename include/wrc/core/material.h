@@ -2,12 +2,17 @@
 /// @file material.h
 /// Elastic materials of the two bodies and their combination as in Kalker's theory.
 
+#include <limits>
+
 namespace wrc {
 
 /// Linear elastic, isotropic material of one body.
 struct ElasticMaterial {
   double shear_modulus = 82000.0;  ///< G, N/mm².
   double poisson = 0.28;           ///< ν, -.
+  /// k, the yield limit in pure shear, N/mm² (NaN: not given). Not part of the contact problem:
+  /// the surface-fatigue index of the body (SurfaceFatigueIndex) compares the load with it.
+  double shear_yield = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Combined constants of two half-spaces (Kalker, "Three-dimensional elastic bodies in rolling

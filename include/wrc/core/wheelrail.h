@@ -84,6 +84,10 @@ struct PatchResult {
   /// frictional work per unit rolling distance; TGamma() is the same from the creepages and
   /// forces. FrictionalPower() turns it into W.
   double t_gamma_slip = 0.0;
+  double contact_area = 0.0;  ///< Elements in contact times the element area, mm².
+  /// SurfaceFatigueIndex for the rail's and the wheel's `shear_yield` (NaN where not given).
+  double fi_surf_rail = std::numeric_limits<double>::quiet_NaN();
+  double fi_surf_wheel = std::numeric_limits<double>::quiet_NaN();
   Eigen::Vector3d force_T = Eigen::Vector3d::Zero();   ///< Force on the rail, track frame.
   Eigen::Vector3d moment_T = Eigen::Vector3d::Zero();  ///< About the reference, track frame.
   SolverStatus status = SolverStatus::kConverged;
@@ -143,6 +147,17 @@ struct WheelRailResult {
 double TGamma(const PatchResult& patch);
 /// Tγ summed over the patches of a solve, N.
 double TGamma(const WheelRailResult& result);
+/// Ekberg's surface-fatigue index of a patch for a body of yield limit in pure shear k (N/mm²):
+/// FI_surf = f − k/p0, with f = √(fx² + fs²)/fn the traction coefficient and p0 the peak
+/// pressure, here the solved one (pmax). For a Hertzian patch that is Ekberg's
+/// f − 2πabk/(3Fz); on the non-elliptic patches of conformal and flange contact the peak the
+/// surface carries is the solved one (a Hertzian patch of the same load and area would put it
+/// 1–43 % lower on the Manchester and heavy-haul reference cases). Above 0 the load lies beyond
+/// the surface's shakedown limit: surface-initiated rolling contact fatigue is to be expected.
+/// A. Ekberg, E. Kabo, H. Andersson, An engineering model for prediction of rolling contact
+/// fatigue of railway wheels, Fatigue Fract. Engng Mater. Struct. 25 (2002) 899–909. NaN
+/// without contact or k.
+double SurfaceFatigueIndex(const PatchResult& patch, double shear_yield);
 /// The frictional power of a patch, W: ∫ p·ṡ dA with the tractions on the rail and its slip
 /// velocity relative to the wheel, ṡ = V·s (`velocity` V in mm/s), from the local fields;
 /// negative when it dissipates, as CONTACT prints FRIC.POWER. Equal to −V·t_gamma_slip.

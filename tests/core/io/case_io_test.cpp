@@ -322,6 +322,13 @@ TEST(CaseIo, MaterialPerBodyAndIntegers) {
   EXPECT_DOUBLE_EQ(c.wheel_material.shear_modulus, 80000.0);
   EXPECT_DOUBLE_EQ(c.grid.dx, 1.0);
   EXPECT_EQ(c.wheelset.side, WheelSide::kLeft);
+  EXPECT_TRUE(std::isnan(c.rail_material.shear_yield));  // not given: no fatigue index
+  const Case yielding =
+      ParseCase(Replace(text, "shear_modulus = [82000, 80000]",
+                        "shear_modulus = [82000, 80000]\nshear_yield = [300, 350.5]"),
+                "/cases", "case.toml");
+  EXPECT_DOUBLE_EQ(yielding.rail_material.shear_yield, 300.0);
+  EXPECT_DOUBLE_EQ(yielding.wheel_material.shear_yield, 350.5);
 }
 
 TEST(CaseIo, FrictionVaryingWithAngleInterpolates) {
@@ -630,6 +637,9 @@ TEST(CaseIo, RejectsValuesOutsideTheirPlausibleRange) {
                   "flange_back_distance = 0");
   ExpectCaseError(kWheelRailCase, "fz = 10000.0", "z = 1e308",
                   {"state.z = 1e+308: ", "within ±1000"});
+  ExpectCaseError(
+      kWheelRailCase, "shear_modulus = 82000.0", "shear_modulus = 82000.0\nshear_yield = 3e5",
+      {"material.shear_yield = 3e+05: ", "between 1 and 10000 N/mm²"}, "shear_yield = 3e5");
 }
 
 }  // namespace

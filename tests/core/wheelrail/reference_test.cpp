@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -157,6 +158,27 @@ TEST_P(TGammaReference, FromTheSlipConvergesToCreepagesTimesForces) {
     }
     EXPECT_LT(FrictionalPower(f, fine.velocity), 0.0) << "patch " << k;
     EXPECT_DOUBLE_EQ(FrictionalPower(f, fine.velocity), -1e-3 * fine.velocity * f.t_gamma_slip);
+  }
+}
+
+// Ekberg's surface-fatigue index: it changes sign where k passes f·pmax (the shakedown limit of
+// the surface), and the traction coefficient f never exceeds the largest μ (|p_t| ≤ μ·p_n
+// element by element); without a yield limit the index is not given.
+TEST_P(TGammaReference, SurfaceFatigueIndexChangesSignAtTheShakedownLimit) {
+  Case c = LoadCase(GetParam());
+  const double mu = *std::max_element(c.friction.mu.begin(), c.friction.mu.end());
+  const WheelRailResult plain = SolveWheelRail(c);
+  for (std::size_t k = 0; k < plain.patches.size(); ++k) {
+    const PatchResult& p = plain.patches[k];
+    EXPECT_TRUE(std::isnan(p.fi_surf_rail) && std::isnan(p.fi_surf_wheel));
+    const double f = std::hypot(p.fx, p.fs) / p.fn;
+    EXPECT_LE(f, mu * (1.0 + 1e-6)) << "patch " << k;
+    c.rail_material.shear_yield = 0.99 * f * p.pmax;   // beyond shakedown: FI = 0.01·f
+    c.wheel_material.shear_yield = 1.01 * f * p.pmax;  // within it: FI = −0.01·f
+    const WheelRailResult r = SolveWheelRail(c);
+    ASSERT_EQ(r.patches.size(), plain.patches.size());
+    EXPECT_NEAR(r.patches[k].fi_surf_rail, 0.01 * f, 1e-12) << "patch " << k;
+    EXPECT_NEAR(r.patches[k].fi_surf_wheel, -0.01 * f, 1e-12) << "patch " << k;
   }
 }
 
