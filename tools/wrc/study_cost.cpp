@@ -438,9 +438,10 @@ void WriteTablesReport(const fs::path& out, const TablesStudy& study,
 }
 
 void SayRow(const TableRow& row) {
-  std::cerr << "tables study: " << RowLabel(row) << ": " << row.points << " points (" << row.axes
-            << "), " << row.cpu_s << " CPU s, p95 " << 100 * row.force_p95[0] << " % (cubic "
-            << 100 * row.force_p95[1] << " %) of the load\n";
+  std::cerr << "tables study: " << RowLabel(row) << ": " << row.points << " points"
+            << (row.axes.empty() ? "" : " (" + row.axes + ")") << ", " << row.cpu_s
+            << " CPU s, p95 " << 100 * row.force_p95[0] << " % (cubic " << 100 * row.force_p95[1]
+            << " %) of the load\n";
 }
 
 // One table of the study: generated, timed and verified; *axes receives its nodes.
