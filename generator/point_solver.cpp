@@ -52,6 +52,20 @@ double OutputValue(const std::string& name, const WheelRailResult& r) {
   if (name == "n_patches") return static_cast<double>(r.patches.size());
   if (name == "z") return r.z;
   if (name == "t_gamma") return TGamma(r);
+  if (name == "t_gamma_slip") {
+    double sum = 0.0;
+    for (const PatchResult& patch : r.patches) sum += patch.t_gamma_slip;
+    return sum;
+  }
+  if (name == "fi_surf_rail" || name == "fi_surf_wheel") {
+    // The patch nearest to (or furthest beyond) the surface's shakedown limit.
+    double worst = kNaN;
+    for (const PatchResult& patch : r.patches) {
+      const double fi = name == "fi_surf_rail" ? patch.fi_surf_rail : patch.fi_surf_wheel;
+      if (!std::isnan(fi)) worst = std::isnan(worst) ? fi : std::max(worst, fi);
+    }
+    return worst;
+  }
   if (name == "frictional_power") {
     double power = 0.0;
     for (const PatchResult& patch : r.patches) power += FrictionalPower(patch, r.velocity);
@@ -97,9 +111,10 @@ std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult&
   for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
     const std::string& name = scene.outputs[k];
     if (status == PointStatus::kNoContact) {
-      // No contact, no force; a contact location does not exist. z (prescribed fz) or fz
-      // (prescribed z) are what the solver reports.
-      const bool location = name == "contact_y" || name == "contact_angle";
+      // No contact, no force; a contact location, and a patch to judge for fatigue, do not
+      // exist. z (prescribed fz) or fz (prescribed z) are what the solver reports.
+      const bool location = name == "contact_y" || name == "contact_angle" ||
+                            name == "fi_surf_rail" || name == "fi_surf_wheel";
       values[k] = location ? kNaN : (name == "z" || name == "fz" ? OutputValue(name, result) : 0.0);
     } else {
       values[k] = OutputValue(name, result);

@@ -265,7 +265,8 @@ void CheckUnlistedRanges(const Section& table, const std::vector<std::string>& a
 }
 
 std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& table,
-                                     bool fz_prescribed) {
+                                     const Case& base) {
+  const bool fz_prescribed = base.state.force_prescribed();
   const toml::node* node = table.Find("outputs");
   if (node == nullptr) return DefaultSceneOutputs(fz_prescribed);
   const toml::array* array = node->as_array();
@@ -290,6 +291,13 @@ std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& tabl
       file.Fail(&element, path,
                 "z is an output only when fz is prescribed (state.fz or an fz axis); here z "
                 "is an input");
+    }
+    const double k = name == "fi_surf_rail"    ? base.rail_material.shear_yield
+                     : name == "fi_surf_wheel" ? base.wheel_material.shear_yield
+                                               : 0.0;
+    if (std::isnan(k)) {
+      file.Fail(&element, path,
+                name + " needs the body's yield limit in shear: material.shear_yield");
     }
     if (std::find(outputs.begin(), outputs.end(), name) != outputs.end()) {
       file.Fail(&element, path, "output listed twice");
@@ -667,7 +675,7 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
   for (const SceneAxis& axis : scene.axes) first.push_back(axis.values.front());
   ApplyAxisValues(scene.base, scene.axes, first);
 
-  scene.outputs = ReadOutputs(file, table, scene.base.state.force_prescribed());
+  scene.outputs = ReadOutputs(file, table, scene.base);
   const Section refine(table, "refine");
   if (refine.exists()) scene.refine = ReadRefineSettings(refine, scene);
   return scene;
@@ -739,6 +747,9 @@ std::string_view SceneQuantityUnit(std::string_view name) {
       {"pmax", "N/mm^2"},
       {"t_gamma", "N"},
       {"frictional_power", "W"},
+      {"t_gamma_slip", "N"},
+      {"fi_surf_rail", "-"},
+      {"fi_surf_wheel", "-"},
   };
   for (const auto& [quantity, unit] : kUnits) {
     if (quantity == name) return unit;

@@ -197,6 +197,15 @@ TEST_F(GenerateTest, StoredValuesEqualDirectSolves) {
       power += FrictionalPower(patch, c.state.velocity);
     EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "frictional_power")][point], power));
     EXPECT_LE(power, 0.0);  // dissipated
+    double slip = 0.0, fi_rail = -1e300, fi_wheel = -1e300;
+    for (const PatchResult& patch : direct.patches) {
+      slip += patch.t_gamma_slip;
+      fi_rail = std::max(fi_rail, SurfaceFatigueIndex(patch, 300.0));
+      fi_wheel = std::max(fi_wheel, SurfaceFatigueIndex(patch, 350.0));
+    }
+    EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "t_gamma_slip")][point], slip));
+    EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "fi_surf_rail")][point], fi_rail));
+    EXPECT_TRUE(SameBits(stored.outputs[OutputIndex(*scene_, "fi_surf_wheel")][point], fi_wheel));
     EXPECT_TRUE(direct.has_force_location);
   }
 }

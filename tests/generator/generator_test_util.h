@@ -61,6 +61,8 @@ inline std::string TinyScene(const std::string& table, const std::string& state 
        << "[rail]\nprofile = \"" << ProfilePath("MBench_UIC60_v3.prr") << "\"\n"
        << "[wheel]\nprofile = \"" << ProfilePath("MBench_S1002_v3.prw") << "\"\n"
        << "[grid]\ndx = 1.0\nds = 1.0\n"
+       // Rail and wheel steels' yield limits in shear, for the surface-fatigue outputs.
+       << "[material]\nshear_yield = [300.0, 350.0]\n"
        << "[effects]\ntangential = " << (tangential ? "true" : "false") << "\n"
        << "[state]\n"
        << state
@@ -78,7 +80,8 @@ inline std::string DefaultTinyTable() {
          "y = {from = 0.0, to = 5.0, step = 1.0}\n"
          "outputs = [\"fx\", \"fy\", \"fz\", \"mx\", \"my\", \"mz\", \"fx_ws\", \"fy_ws\", "
          "\"fz_ws\", \"n_patches\", \"contact_y\", \"contact_angle\", \"pmax\", \"z\", "
-         "\"t_gamma\", \"frictional_power\"]";
+         "\"t_gamma\", \"frictional_power\", \"t_gamma_slip\", \"fi_surf_rail\", "
+         "\"fi_surf_wheel\"]";
 }
 
 using test_support::ReadFile;

@@ -112,11 +112,16 @@ inline constexpr std::string_view kSceneAxisNames[] = {
     "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vyaw", "mu", "y_wheel"};
 
 /// Allowed output names (docs/reference/table-layout.md). `z` requires a prescribed fz.
-inline constexpr std::string_view kSceneOutputNames[] = {
-    "fx",    "fy",        "fz",        "mx",
-    "my",    "mz",        "fx_ws",     "fy_ws",
-    "fz_ws", "n_patches", "contact_y", "contact_angle",
-    "pmax",  "z",         "t_gamma",   "frictional_power"};
+inline constexpr std::string_view kSceneOutputNames[] = {"fx",           "fy",
+                                                         "fz",           "mx",
+                                                         "my",           "mz",
+                                                         "fx_ws",        "fy_ws",
+                                                         "fz_ws",        "n_patches",
+                                                         "contact_y",    "contact_angle",
+                                                         "pmax",         "z",
+                                                         "t_gamma",      "frictional_power",
+                                                         "t_gamma_slip", "fi_surf_rail",
+                                                         "fi_surf_wheel"};
 
 /// True for the force outputs fx fy fz fx_ws fy_ws fz_ws, whose errors are measured relative to
 /// the local wheel load.

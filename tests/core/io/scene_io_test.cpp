@@ -176,6 +176,20 @@ TEST(SceneIo, DefaultOutputsDependOnWhatIsPrescribed) {
   EXPECT_EQ(DefaultSceneOutputs(false), common);
 }
 
+// The surface-fatigue outputs judge the load against a body's yield limit in shear, which the
+// solve itself does not need: a scene asking for one without it is refused at the output.
+TEST(SceneIo, FatigueOutputsNeedTheYieldLimit) {
+  const std::string table =
+      "[table]\naxes = [\"y\"]\ny = [0.0, 1.0]\noutputs = [\"fy\", "
+      "\"t_gamma_slip\", \"fi_surf_wheel\"]\n";
+  ExpectSceneError(SceneWith(table), "outputs",
+                   {"table.outputs[2]", "fi_surf_wheel needs", "material.shear_yield"});
+  const Scene scene = Parse(SceneWith(table) + "[material]\nshear_yield = 320.0\n");
+  EXPECT_EQ(scene.outputs, (std::vector<std::string>{"fy", "t_gamma_slip", "fi_surf_wheel"}));
+  EXPECT_EQ(SceneQuantityUnit("fi_surf_wheel"), "-");
+  EXPECT_EQ(SceneQuantityUnit("t_gamma_slip"), "N");
+}
+
 TEST(SceneIo, CaseAtPointAppliesAxisValues) {
   const std::string text = SceneWith(
       "[table]\naxes = [\"y\", \"z\", \"spin\", \"mu\", \"yaw\", \"vy\"]\n"
