@@ -52,11 +52,7 @@ double OutputValue(const std::string& name, const WheelRailResult& r) {
   if (name == "n_patches") return static_cast<double>(r.patches.size());
   if (name == "z") return r.z;
   if (name == "t_gamma") return TGamma(r);
-  if (name == "t_gamma_slip") {
-    double sum = 0.0;
-    for (const PatchResult& patch : r.patches) sum += patch.t_gamma_slip;
-    return sum;
-  }
+  if (name == "t_gamma_slip") return TGammaSlip(r);
   if (name == "fi_surf_rail" || name == "fi_surf_wheel") {
     // The patch nearest to (or furthest beyond) the surface's shakedown limit.
     double worst = kNaN;
@@ -66,11 +62,7 @@ double OutputValue(const std::string& name, const WheelRailResult& r) {
     }
     return worst;
   }
-  if (name == "frictional_power") {
-    double power = 0.0;
-    for (const PatchResult& patch : r.patches) power += FrictionalPower(patch, r.velocity);
-    return power;
-  }
+  if (name == "frictional_power") return FrictionalPower(r);
   if (name == "pmax") {
     double pmax = 0.0;
     for (const PatchResult& patch : r.patches) pmax = std::max(pmax, patch.pmax);

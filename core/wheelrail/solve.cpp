@@ -758,6 +758,18 @@ double FrictionalPower(const PatchResult& patch, double velocity) {
   return -1e-3 * velocity * patch.t_gamma_slip;  // N·mm/s to W
 }
 
+double FrictionalPower(const WheelRailResult& result) {
+  double sum = 0.0;
+  for (const PatchResult& patch : result.patches) sum += FrictionalPower(patch, result.velocity);
+  return sum;
+}
+
+double TGammaSlip(const WheelRailResult& result) {
+  double sum = 0.0;
+  for (const PatchResult& patch : result.patches) sum += patch.t_gamma_slip;
+  return sum;
+}
+
 double TGamma(const WheelRailResult& result) {
   double sum = 0.0;
   for (const PatchResult& patch : result.patches) sum += TGamma(patch);

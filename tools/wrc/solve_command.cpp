@@ -140,10 +140,7 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
   json forces = Vec(r.force_T, "fx", "fy", "fz");
   forces.update(Vec(r.moment_T, "mx", "my", "mz"));
   json patches = json::array();
-  double t_gamma_slip = 0.0, frictional_power = 0.0;
   for (const PatchResult& p : r.patches) {
-    t_gamma_slip += p.t_gamma_slip;
-    frictional_power += FrictionalPower(p, r.velocity);
     patches.push_back(
         {{"fn", p.fn},
          {"fx", p.fx},
@@ -188,8 +185,8 @@ json WheelRailJson(const WheelRailResult& r, double seconds) {
           {"rail_forces_track", forces},
           {"rail_forces_wheelset", Vec(r.force_W, "fx", "fy", "fz")},
           {"t_gamma", TGamma(r)},
-          {"t_gamma_slip", t_gamma_slip},
-          {"frictional_power", frictional_power},
+          {"t_gamma_slip", TGammaSlip(r)},
+          {"frictional_power", FrictionalPower(r)},
           {"patches", patches},
           {"force_location", r.has_force_location ? json{{"x_tr", r.force_location_T(0)},
                                                          {"y_tr", r.force_location_T(1)},

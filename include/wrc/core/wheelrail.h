@@ -147,6 +147,8 @@ struct WheelRailResult {
 double TGamma(const PatchResult& patch);
 /// Tγ summed over the patches of a solve, N.
 double TGamma(const WheelRailResult& result);
+/// The patches' t_gamma_slip summed, N.
+double TGammaSlip(const WheelRailResult& result);
 /// Ekberg's surface-fatigue index of a patch for a body of yield limit in pure shear k (N/mm²):
 /// FI_surf = f − k/p0, with f = √(fx² + fs²)/fn the traction coefficient and p0 the peak
 /// pressure, here the solved one (pmax). For a Hertzian patch that is Ekberg's
@@ -162,6 +164,8 @@ double SurfaceFatigueIndex(const PatchResult& patch, double shear_yield);
 /// velocity relative to the wheel, ṡ = V·s (`velocity` V in mm/s), from the local fields;
 /// negative when it dissipates, as CONTACT prints FRIC.POWER. Equal to −V·t_gamma_slip.
 double FrictionalPower(const PatchResult& patch, double velocity);
+/// FrictionalPower summed over the patches of a solve at its velocity, W.
+double FrictionalPower(const WheelRailResult& result);
 
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
 /// patches and solves them; with `state.fz` it finds the wheelset height z that gives that
