@@ -5,9 +5,12 @@
 # then fails to compile instead of silently adding a dependency. Tests and benchmarks, which
 # test internals, keep the whole source tree on their path.
 
-# The public headers of each library: include/wrc/runtime.h(pp) for the runtime (installed with
-# it), include/wrc/core/ for the solver, include/wrc/generator/ for the generator.
-set(WRC_RUNTIME_PUBLIC_HEADERS wrc/runtime.h wrc/runtime.hpp)
+# The public headers of each library: include/wrc/runtime.h(pp) and the table limits it includes
+# for the runtime (installed with it), include/wrc/core/ for the solver, include/wrc/generator/
+# for the generator. Below all of them, header-only: the quantity registry
+# (include/wrc/quantities.h) and the table limits (include/wrc/table_limits.h).
+set(WRC_RUNTIME_PUBLIC_HEADERS wrc/runtime.h wrc/runtime.hpp wrc/table_limits.h)
+set(WRC_QUANTITY_HEADERS wrc/quantities.h wrc/table_limits.h)
 
 # wrc_layer(NAME DIRS dir... HEADERS header...): the directory
 # ${PROJECT_BINARY_DIR}/layers/NAME with links to the source directories DIRS (relative to the
@@ -42,10 +45,9 @@ wrc_layer(hdf5 DIRS runtime/hdf5)
 # `wrc export`. The schema's names come from runtime/hdf5/table_schema.h, in either build.
 wrc_layer(format DIRS runtime/format runtime/hdf5 HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
 wrc_layer(runtime_public HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
-wrc_layer(runtime DIRS runtime HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
-wrc_layer(core_public DIRS wrc/core)
-# The scene parser checks axes against the runtime's limits (wrc/runtime.h, plain C constants).
-wrc_layer(core DIRS core wrc/core HEADERS wrc/runtime.h)
+wrc_layer(runtime DIRS runtime HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS} wrc/quantities.h)
+wrc_layer(core_public DIRS wrc/core HEADERS ${WRC_QUANTITY_HEADERS})
+wrc_layer(core DIRS core wrc/core HEADERS ${WRC_QUANTITY_HEADERS})
 wrc_layer(generator_public DIRS wrc/generator)
 # The generator measures a refinement with the runtime's cubic line arithmetic, and writes its
 # journal with the table formats' little-endian fields (header-only, both).

@@ -30,56 +30,6 @@ PointStatus StatusOf(SolverStatus status) {
   return PointStatus::kError;
 }
 
-// The patch carrying the largest normal force (the first of equals: deterministic).
-const PatchResult* MainPatch(const WheelRailResult& result) {
-  const PatchResult* main = nullptr;
-  for (const PatchResult& patch : result.patches) {
-    if (main == nullptr || patch.fn > main->fn) main = &patch;
-  }
-  return main;
-}
-
-double OutputValue(const std::string& name, const WheelRailResult& r) {
-  if (name == "fx") return r.force_T(0);
-  if (name == "fy") return r.force_T(1);
-  if (name == "fz") return r.force_T(2);
-  if (name == "mx") return r.moment_T(0);
-  if (name == "my") return r.moment_T(1);
-  if (name == "mz") return r.moment_T(2);
-  if (name == "fx_ws") return r.force_W(0);
-  if (name == "fy_ws") return r.force_W(1);
-  if (name == "fz_ws") return r.force_W(2);
-  if (name == "n_patches") return static_cast<double>(r.patches.size());
-  if (name == "z") return r.z;
-  if (name == "t_gamma") return TGamma(r);
-  if (name == "t_gamma_slip") return TGammaSlip(r);
-  if (name == "fi_surf_rail" || name == "fi_surf_wheel") {
-    // The patch nearest to (or furthest beyond) the surface's shakedown limit.
-    double worst = kNaN;
-    for (const PatchResult& patch : r.patches) {
-      const double fi = name == "fi_surf_rail" ? patch.fi_surf_rail : patch.fi_surf_wheel;
-      if (!std::isnan(fi)) worst = std::isnan(worst) ? fi : std::max(worst, fi);
-    }
-    return worst;
-  }
-  if (name == "frictional_power") return FrictionalPower(r);
-  if (name == "pmax") {
-    double pmax = 0.0;
-    for (const PatchResult& patch : r.patches) pmax = std::max(pmax, patch.pmax);
-    return pmax;
-  }
-  if (name == "contact_y" || name == "contact_angle") {
-    const bool want_y = name == "contact_y";
-    if (r.has_force_location) return want_y ? r.contact_y : r.contact_angle;
-    // The resultant's line of action missed the rail profile (rare: nearly horizontal force);
-    // the main patch's reference is the closest stand-in and keeps the table finite.
-    const PatchResult* main = MainPatch(r);
-    if (main == nullptr) return kNaN;
-    return want_y ? main->reference_rail(0) : main->contact_angle;
-  }
-  return kNaN;  // unreachable: the scene parser admits only the names above
-}
-
 }  // namespace
 
 const char* ToString(PointStatus status) {
@@ -101,16 +51,7 @@ std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult&
   std::vector<double> values(scene.outputs.size(), kNaN);
   if (status == PointStatus::kNotConverged || status == PointStatus::kError) return values;
   for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
-    const std::string& name = scene.outputs[k];
-    if (status == PointStatus::kNoContact) {
-      // No contact, no force; a contact location, and a patch to judge for fatigue, do not
-      // exist. z (prescribed fz) or fz (prescribed z) are what the solver reports.
-      const bool location = name == "contact_y" || name == "contact_angle" ||
-                            name == "fi_surf_rail" || name == "fi_surf_wheel";
-      values[k] = location ? kNaN : (name == "z" || name == "fz" ? OutputValue(name, result) : 0.0);
-    } else {
-      values[k] = OutputValue(name, result);
-    }
+    values[k] = OutputValue(scene.outputs[k], result);
   }
   return values;
 }

@@ -102,7 +102,7 @@ void WriteTableContents(h5::File& file, const Scene& scene, const TableData& dat
   for (const SceneAxis& axis : scene.axes) {
     h5::Dataset dataset =
         axes.WriteDataset<double>(axis.name, {axis.values.size()}, axis.values, storage);
-    dataset.WriteStringAttribute(schema::kUnit, std::string(SceneQuantityUnit(axis.name)));
+    dataset.WriteStringAttribute(schema::kUnit, std::string(QuantityUnit(axis.name)));
     axis_names.push_back(axis.name);
   }
   axes.WriteStringArrayAttribute(schema::kOrder, axis_names);
@@ -111,7 +111,7 @@ void WriteTableContents(h5::File& file, const Scene& scene, const TableData& dat
   for (std::size_t k = 0; k < scene.outputs.size(); ++k) {
     const std::string& name = scene.outputs[k];
     h5::Dataset dataset = outputs.WriteDataset<double>(name, shape, data.values[k], storage);
-    dataset.WriteStringAttribute(schema::kUnit, std::string(SceneQuantityUnit(name)));
+    dataset.WriteStringAttribute(schema::kUnit, std::string(QuantityUnit(name)));
     dataset.WriteStringArrayAttribute(schema::kDimensions, axis_names);
   }
   outputs.WriteStringArrayAttribute(schema::kOrder, scene.outputs);

@@ -7,10 +7,12 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "runtime/scene_values.h"
 #include "runtime/table.h"
+#include "wrc/quantities.h"
 #include "wrc/runtime.h"
 
 namespace {
@@ -19,35 +21,27 @@ using wrc::runtime::SceneNumber;
 using wrc::runtime::SceneString;
 using wrc::runtime::SetLastError;
 
-// Quantities a table axis may stand for.
-// y_wheel = y − r0·roll, the wheel's lateral position at its contact (an axis that follows the
-// tread-to-flange transition as the wheelset rolls).
-enum Quantity {
-  kY,
-  kZ,
-  kFz,
-  kRoll,
-  kYaw,
-  kSpin,
-  kOmega,
-  kVy,
-  kVroll,
-  kVyaw,
-  kMu,
-  kYWheel,
-  kQuantities
-};
-constexpr const char* kQuantityNames[kQuantities] = {
-    "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vroll", "vyaw", "mu", "y_wheel"};
-// Sign of each quantity under the mirror image in the x–z plane.
-constexpr double kQuantityMirror[kQuantities] = {-1, 1, 1, -1, -1, 1, 1, -1, -1, -1, 1, -1};
+// The wheelset's quantities (wrc/quantities.h), by their index in kStateQuantities.
+constexpr int kQuantities = wrc::kStateQuantityCount;
+constexpr int kY = wrc::StateQuantityIndex("y");
+constexpr int kZ = wrc::StateQuantityIndex("z");
+constexpr int kFz = wrc::StateQuantityIndex("fz");
+constexpr int kRoll = wrc::StateQuantityIndex("roll");
+constexpr int kYaw = wrc::StateQuantityIndex("yaw");
+constexpr int kSpin = wrc::StateQuantityIndex("spin");
+constexpr int kOmega = wrc::StateQuantityIndex("omega");
+constexpr int kVy = wrc::StateQuantityIndex("vy");
+constexpr int kVroll = wrc::StateQuantityIndex("vroll");
+constexpr int kVyaw = wrc::StateQuantityIndex("vyaw");
+constexpr int kMu = wrc::StateQuantityIndex("mu");
+constexpr int kYWheel = wrc::StateQuantityIndex("y_wheel");
 
-// Outputs the wheelset result reads, with their sign under the mirror image.
+// The outputs the wheelset result reads.
 enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kTGamma, kOutputs };
-constexpr const char* kOutputNames[kOutputs] = {
+constexpr std::string_view kOutputNames[kOutputs] = {
     "fx", "fy", "fz", "mx", "my", "mz", "contact_y", "contact_angle", "t_gamma"};
-// Tγ is a dissipated power: the same for a wheel and its mirror image.
-constexpr double kOutputMirror[kOutputs] = {1, -1, 1, -1, 1, -1, -1, -1, 1};
+
+constexpr double OutputMirror(int k) { return wrc::FindOutputQuantity(kOutputNames[k])->mirror; }
 
 // Most outputs a table may have to be read here: the result buffer lives on the stack.
 constexpr int kMaxOutputs = 64;
@@ -91,7 +85,7 @@ namespace {
 // and omega/spin (omega follows from spin, free rolling by default).
 void ReadFixedState(const std::string& scene, Wheel& w) {
   for (int q = 0; q < kQuantities; ++q) {
-    w.fixed[q] = SceneNumber(scene, "state", kQuantityNames[q]).value_or(0.0);
+    w.fixed[q] = SceneNumber(scene, "state", wrc::kStateQuantities[q].name).value_or(0.0);
   }
   w.fixed[kZ] = SceneNumber(scene, "state", "z").value_or(NAN);
   w.fixed[kFz] = SceneNumber(scene, "state", "fz").value_or(NAN);
@@ -103,12 +97,7 @@ void ReadFixedState(const std::string& scene, Wheel& w) {
   w.fixed[kYWheel] = NAN;  // follows from y and roll, never fixed on its own
 }
 
-int QuantityOf(const char* axis_name) {
-  for (int q = 0; q < kQuantities; ++q) {
-    if (std::strcmp(axis_name, kQuantityNames[q]) == 0) return q;
-  }
-  return -1;
-}
+int QuantityOf(const char* axis_name) { return wrc::StateQuantityIndex(axis_name); }
 
 // Reads what the wheel needs from its table; `side` is the wheel's side.
 int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
@@ -160,7 +149,7 @@ int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
     return WRC_ERR_FORMAT;
   }
   for (int k = 0; k < kOutputs; ++k)
-    w.output_index[k] = wrc_table_output_index(table, kOutputNames[k]);
+    w.output_index[k] = wrc_table_output_index(table, kOutputNames[k].data());
   return 0;
 }
 
@@ -202,7 +191,8 @@ void StateQuantities(const wrc_wheelset_state& s, int side, const Wheel& w,
   value[kMu] = s.mu[side];
   value[kYWheel] = s.y - w.nominal_radius * s.roll;
   FoldVelocities(w, side, value);
-  for (int q = 0; q < kQuantities; ++q) value[q] *= w.mirror > 0.0 ? 1.0 : kQuantityMirror[q];
+  for (int q = 0; q < kQuantities; ++q)
+    value[q] *= w.mirror > 0.0 ? 1.0 : wrc::kStateQuantities[q].mirror;
 }
 
 // WRC_FLAG_FIXED when the state asks for a value the table fixes otherwise. A quantity the
@@ -220,7 +210,7 @@ int FixedFlag(const Wheel& w, const double (&value)[kQuantities]) {
 double MirroredOutput(const Wheel& w, const double* out, int k) {
   const int index = w.output_index[k];
   if (index < 0) return NAN;
-  return w.mirror > 0.0 ? out[index] : kOutputMirror[k] * out[index];
+  return w.mirror > 0.0 ? out[index] : OutputMirror(k) * out[index];
 }
 
 // A coordinate that lies outside its axis by rounding only (spin recomputed from omega at an

@@ -20,7 +20,7 @@
 #include "wrc/core/errors.h"
 #include "wrc/core/grid.h"
 #include "wrc/core/profile.h"
-#include "wrc/runtime.h"
+#include "wrc/table_limits.h"
 
 namespace wrc {
 namespace io {

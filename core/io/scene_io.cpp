@@ -13,7 +13,7 @@
 #include "core/io/case_parser.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/scene.h"
-#include "wrc/runtime.h"
+#include "wrc/table_limits.h"
 
 namespace wrc {
 namespace io {
@@ -26,14 +26,19 @@ constexpr double kMaxPointCount = 1e9;
 // A step range includes `to` when it lies this close (relative to the step) to a grid value.
 constexpr double kStepEndTolerance = 1e-9;
 
-bool IsAxisName(std::string_view name) {
-  return std::find(std::begin(kSceneAxisNames), std::end(kSceneAxisNames), name) !=
-         std::end(kSceneAxisNames);
+// The names a scene may use, in the registry's order (wrc/quantities.h).
+std::vector<std::string_view> SceneAxisNames() {
+  std::vector<std::string_view> names;
+  for (const StateQuantity& q : kStateQuantities) {
+    if (q.scene_axis) names.push_back(q.name);
+  }
+  return names;
 }
 
-bool IsOutputName(std::string_view name) {
-  return std::find(std::begin(kSceneOutputNames), std::end(kSceneOutputNames), name) !=
-         std::end(kSceneOutputNames);
+std::vector<std::string_view> SceneOutputNames() {
+  std::vector<std::string_view> names;
+  for (const OutputQuantity& q : kOutputQuantities) names.push_back(q.name);
+  return names;
 }
 
 std::string QuotedList(const std::vector<std::string_view>& names) {
@@ -217,8 +222,7 @@ std::vector<std::string> ReadAxisNames(const SourceFile& file, const Section& ta
   const toml::array* array = node->as_array();
   if (array == nullptr) file.Fail(node, "table.axes", "must be an array of axis names");
   if (array->empty()) file.Fail(node, "table.axes", "must list at least one axis");
-  const std::vector<std::string_view> allowed(std::begin(kSceneAxisNames),
-                                              std::end(kSceneAxisNames));
+  const std::vector<std::string_view> allowed = SceneAxisNames();
   std::vector<std::string> names;
   for (std::size_t i = 0; i < array->size(); ++i) {
     const toml::node& element = *array->get(i);
@@ -226,7 +230,7 @@ std::vector<std::string> ReadAxisNames(const SourceFile& file, const Section& ta
     const auto* text = element.as_string();
     if (text == nullptr) file.Fail(&element, path, "must be a string (an axis name)");
     const std::string& name = text->get();
-    if (!IsAxisName(name)) {
+    if (!IsSceneAxisName(name)) {
       std::string problem = "unknown axis";
       const std::string suggestion = SuggestName(name, allowed);
       if (!suggestion.empty()) problem += " (did you mean \"" + suggestion + "\"?)";
@@ -256,7 +260,7 @@ std::vector<std::string> ReadAxisNames(const SourceFile& file, const Section& ta
 /// Rejects ranges for quantities that are not listed in table.axes: the user meant to vary
 /// them, and silently ignoring the range would produce the wrong table.
 void CheckUnlistedRanges(const Section& table, const std::vector<std::string>& axis_names) {
-  for (std::string_view name : kSceneAxisNames) {
+  for (std::string_view name : SceneAxisNames()) {
     if (table.Has(name) &&
         std::find(axis_names.begin(), axis_names.end(), name) == axis_names.end()) {
       table.Fail(name, "values given for an axis that is not listed in table.axes");
@@ -272,8 +276,7 @@ std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& tabl
   const toml::array* array = node->as_array();
   if (array == nullptr) file.Fail(node, "table.outputs", "must be an array of output names");
   if (array->empty()) file.Fail(node, "table.outputs", "must list at least one output");
-  const std::vector<std::string_view> allowed(std::begin(kSceneOutputNames),
-                                              std::end(kSceneOutputNames));
+  const std::vector<std::string_view> allowed = SceneOutputNames();
   std::vector<std::string> outputs;
   for (std::size_t i = 0; i < array->size(); ++i) {
     const toml::node& element = *array->get(i);
@@ -281,7 +284,7 @@ std::vector<std::string> ReadOutputs(const SourceFile& file, const Section& tabl
     const auto* text = element.as_string();
     if (text == nullptr) file.Fail(&element, path, "must be a string (an output name)");
     const std::string& name = text->get();
-    if (!IsOutputName(name)) {
+    if (FindOutputQuantity(name) == nullptr) {
       std::string problem = "unknown output";
       const std::string suggestion = SuggestName(name, allowed);
       if (!suggestion.empty()) problem += " (did you mean \"" + suggestion + "\"?)";
@@ -629,7 +632,7 @@ Scene ReadScene(std::string_view text, const std::filesystem::path& base_dir,
   const std::vector<std::string> axis_names = ReadAxisNames(file, table);
   // Unknown keys in [table]: typos of axis names or of outputs.
   std::vector<std::string_view> table_keys = {"axes", "outputs", "refine"};
-  for (std::string_view name : kSceneAxisNames) table_keys.push_back(name);
+  for (std::string_view name : SceneAxisNames()) table_keys.push_back(name);
   for (const auto& [key, node] : *root.get("table")->as_table()) {
     const std::string_view name = key.str();
     if (std::find(table_keys.begin(), table_keys.end(), name) != table_keys.end()) continue;
@@ -700,17 +703,14 @@ std::vector<std::size_t> Scene::Shape() const {
   return shape;
 }
 
-bool IsForceOutput(std::string_view name) {
-  for (std::string_view force : {"fx", "fy", "fz", "fx_ws", "fy_ws", "fz_ws"}) {
-    if (name == force) return true;
-  }
-  return false;
-}
-
 std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed) {
-  std::vector<std::string> outputs = {
-      "fx", "fy", "fz", "mx", "my", "mz", "n_patches", "contact_y", "contact_angle", "pmax"};
-  if (fz_prescribed) outputs.push_back("z");
+  std::vector<std::string> outputs;
+  for (const OutputQuantity& q : kOutputQuantities) {
+    if (q.default_output == DefaultOutput::kYes ||
+        (q.default_output == DefaultOutput::kWithPrescribedFz && fz_prescribed)) {
+      outputs.emplace_back(q.name);
+    }
+  }
   return outputs;
 }
 
@@ -718,43 +718,6 @@ bool AxisStepIsResolvable(double a, double b) {
   const double step = b - a;
   return step >= WRC_AXIS_MIN_STEP &&
          step >= WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b));
-}
-
-std::string_view SceneQuantityUnit(std::string_view name) {
-  static const std::pair<std::string_view, std::string_view> kUnits[] = {
-      {"y", "mm"},
-      {"z", "mm"},
-      {"fz", "N"},
-      {"roll", "rad"},
-      {"yaw", "rad"},
-      {"spin", "-"},
-      {"omega", "rad/s"},
-      {"vy", "mm/s"},
-      {"vyaw", "rad/s"},
-      {"mu", "-"},
-      {"y_wheel", "mm"},
-      {"fx", "N"},
-      {"fy", "N"},
-      {"mx", "N*mm"},
-      {"my", "N*mm"},
-      {"mz", "N*mm"},
-      {"fx_ws", "N"},
-      {"fy_ws", "N"},
-      {"fz_ws", "N"},
-      {"n_patches", "-"},
-      {"contact_y", "mm"},
-      {"contact_angle", "rad"},
-      {"pmax", "N/mm^2"},
-      {"t_gamma", "N"},
-      {"frictional_power", "W"},
-      {"t_gamma_slip", "N"},
-      {"fi_surf_rail", "-"},
-      {"fi_surf_wheel", "-"},
-  };
-  for (const auto& [quantity, unit] : kUnits) {
-    if (quantity == name) return unit;
-  }
-  return {};
 }
 
 Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values) {

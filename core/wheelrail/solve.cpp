@@ -744,36 +744,4 @@ WheelRailResult SolveWheelRail(const Case& c, const WheelRailOptions& options) {
   return result;
 }
 
-double TGamma(const PatchResult& patch) {
-  return -(patch.cksi * patch.fx + patch.ceta * patch.fs + patch.cphi * patch.mn);
-}
-
-double SurfaceFatigueIndex(const PatchResult& patch, double shear_yield) {
-  if (!(patch.fn > 0.0) || !(patch.pmax > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  const double traction = std::hypot(patch.fx, patch.fs) / patch.fn;
-  return traction - shear_yield / patch.pmax;  // NaN when k is NaN
-}
-
-double FrictionalPower(const PatchResult& patch, double velocity) {
-  return -1e-3 * velocity * patch.t_gamma_slip;  // N·mm/s to W
-}
-
-double FrictionalPower(const WheelRailResult& result) {
-  double sum = 0.0;
-  for (const PatchResult& patch : result.patches) sum += FrictionalPower(patch, result.velocity);
-  return sum;
-}
-
-double TGammaSlip(const WheelRailResult& result) {
-  double sum = 0.0;
-  for (const PatchResult& patch : result.patches) sum += patch.t_gamma_slip;
-  return sum;
-}
-
-double TGamma(const WheelRailResult& result) {
-  double sum = 0.0;
-  for (const PatchResult& patch : result.patches) sum += TGamma(patch);
-  return sum;
-}
-
 }  // namespace wrc

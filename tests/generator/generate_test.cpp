@@ -126,7 +126,7 @@ TEST_F(GenerateTest, LayoutAndProvenanceFollowTheSpec) {
     const h5::Dataset dataset = outputs.OpenDataset(name);
     EXPECT_EQ(dataset.Shape(), shape) << name;
     EXPECT_EQ(dataset.Type().Describe(), "float64") << name;
-    EXPECT_EQ(dataset.ReadStringAttribute("unit"), SceneQuantityUnit(name)) << name;
+    EXPECT_EQ(dataset.ReadStringAttribute("unit"), QuantityUnit(name)) << name;
     EXPECT_TRUE(dataset.HasDeflate() && dataset.HasFletcher32()) << name;
     EXPECT_FALSE(dataset.ChunkShape().empty()) << name;
   }

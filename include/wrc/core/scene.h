@@ -23,10 +23,11 @@
 #include <vector>
 
 #include "wrc/core/case.h"
+#include "wrc/quantities.h"
 
 namespace wrc {
 
-/// One table axis: its name (see kSceneAxisNames) and its values, strictly ascending.
+/// One table axis: its name (a scene axis of wrc/quantities.h) and its values, strictly ascending.
 struct SceneAxis {
   std::string name;
   std::vector<double> values;
@@ -103,30 +104,6 @@ struct Scene {
   std::vector<std::size_t> Shape() const;
 };
 
-/// Allowed axis names (docs/reference/case-files.md, scenes).
-/// `y_wheel` is the lateral position of the wheel at its contact, y − r0·roll (r0 the nominal
-/// radius): a wheelset roll of φ moves the wheel's running surface sideways by about r0·φ at
-/// the rail, so the tread-to-flange transition lies at nearly the same y_wheel for every roll,
-/// where on a y axis it moves by ±r0·φ. It replaces `y` on a table that also varies roll.
-inline constexpr std::string_view kSceneAxisNames[] = {
-    "y", "z", "fz", "roll", "yaw", "spin", "omega", "vy", "vyaw", "mu", "y_wheel"};
-
-/// Allowed output names (docs/reference/table-layout.md). `z` requires a prescribed fz.
-inline constexpr std::string_view kSceneOutputNames[] = {"fx",           "fy",
-                                                         "fz",           "mx",
-                                                         "my",           "mz",
-                                                         "fx_ws",        "fy_ws",
-                                                         "fz_ws",        "n_patches",
-                                                         "contact_y",    "contact_angle",
-                                                         "pmax",         "z",
-                                                         "t_gamma",      "frictional_power",
-                                                         "t_gamma_slip", "fi_surf_rail",
-                                                         "fi_surf_wheel"};
-
-/// True for the force outputs fx fy fz fx_ws fy_ws fz_ws, whose errors are measured relative to
-/// the local wheel load.
-bool IsForceOutput(std::string_view name);
-
 /// The outputs used when `table.outputs` is absent: fx fy fz mx my mz n_patches contact_y
 /// contact_angle pmax, plus z when fz is prescribed (fz is in the list anyway).
 std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);
@@ -134,10 +111,6 @@ std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);
 /// Whether neighbouring table-axis values a < b are far enough apart for the runtime to
 /// interpolate between them (the WRC_AXIS_* limits of wrc/runtime.h).
 bool AxisStepIsResolvable(double a, double b);
-
-/// Unit of an axis or output quantity, as stored in the table ("mm", "N", "rad", "N*mm",
-/// "N/mm^2", "rad/s", "mm/s", "-"). Empty for an unknown name.
-std::string_view SceneQuantityUnit(std::string_view name);
 
 /// The case at one grid point: `axis_values` holds one value per axis, in axis order, and need
 /// not be grid nodes (e.g. random samples). A spin value is converted to omega with the case's

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "wrc/core/case.h"
@@ -166,6 +167,12 @@ double SurfaceFatigueIndex(const PatchResult& patch, double shear_yield);
 double FrictionalPower(const PatchResult& patch, double velocity);
 /// FrictionalPower summed over the patches of a solve at its velocity, W.
 double FrictionalPower(const WheelRailResult& result);
+
+/// The value of the table output `name` (kOutputQuantities of wrc/quantities.h) for a solve that
+/// converged or found no contact; without contact, what the registry says (0, NaN, or the
+/// solver's z or fz). Throws std::logic_error for a name that is not an output, or an output
+/// without its line here: adding an output is its registry entry and its line in OutputValue.
+double OutputValue(std::string_view name, const WheelRailResult& result);
 
 /// Solves a `type = "wheel-rail"` case: reads the profiles, places them, finds the contact
 /// patches and solves them; with `state.fz` it finds the wheelset height z that gives that

@@ -186,8 +186,8 @@ TEST(SceneIo, FatigueOutputsNeedTheYieldLimit) {
                    {"table.outputs[2]", "fi_surf_wheel needs", "material.shear_yield"});
   const Scene scene = Parse(SceneWith(table) + "[material]\nshear_yield = 320.0\n");
   EXPECT_EQ(scene.outputs, (std::vector<std::string>{"fy", "t_gamma_slip", "fi_surf_wheel"}));
-  EXPECT_EQ(SceneQuantityUnit("fi_surf_wheel"), "-");
-  EXPECT_EQ(SceneQuantityUnit("t_gamma_slip"), "N");
+  EXPECT_EQ(QuantityUnit("fi_surf_wheel"), "-");
+  EXPECT_EQ(QuantityUnit("t_gamma_slip"), "N");
 }
 
 TEST(SceneIo, CaseAtPointAppliesAxisValues) {
@@ -354,18 +354,15 @@ mu = [0.1, 0.2]
 }
 
 TEST(SceneIo, UnitsForTableAttributes) {
-  EXPECT_EQ(SceneQuantityUnit("y"), "mm");
-  EXPECT_EQ(SceneQuantityUnit("fz"), "N");
-  EXPECT_EQ(SceneQuantityUnit("mz"), "N*mm");
-  EXPECT_EQ(SceneQuantityUnit("omega"), "rad/s");
-  EXPECT_EQ(SceneQuantityUnit("pmax"), "N/mm^2");
-  EXPECT_EQ(SceneQuantityUnit("spin"), "-");
-  EXPECT_EQ(SceneQuantityUnit("bogus"), "");
-  for (std::string_view name : kSceneAxisNames)
-    EXPECT_FALSE(SceneQuantityUnit(name).empty()) << name;
-  for (std::string_view name : kSceneOutputNames) {
-    EXPECT_FALSE(SceneQuantityUnit(name).empty()) << name;
-  }
+  EXPECT_EQ(QuantityUnit("y"), "mm");
+  EXPECT_EQ(QuantityUnit("fz"), "N");
+  EXPECT_EQ(QuantityUnit("mz"), "N*mm");
+  EXPECT_EQ(QuantityUnit("omega"), "rad/s");
+  EXPECT_EQ(QuantityUnit("pmax"), "N/mm^2");
+  EXPECT_EQ(QuantityUnit("spin"), "-");
+  EXPECT_EQ(QuantityUnit("bogus"), "");
+  for (const StateQuantity& q : kStateQuantities) EXPECT_FALSE(q.unit.empty()) << q.name;
+  for (const OutputQuantity& q : kOutputQuantities) EXPECT_FALSE(q.unit.empty()) << q.name;
 }
 
 TEST(SceneIo, LoadSceneResolvesProfilesNextToTheFile) {
@@ -503,7 +500,7 @@ outputs = ["fy"]
   const Case c = CaseAtPoint(scene, {1.5, 0.002});
   EXPECT_DOUBLE_EQ(c.state.y, 1.5 + 460.0 * 0.002);
   EXPECT_DOUBLE_EQ(c.state.roll, 0.002);
-  EXPECT_EQ(SceneQuantityUnit("y_wheel"), "mm");
+  EXPECT_EQ(QuantityUnit("y_wheel"), "mm");
   const std::string both = R"([table]
 axes = ["y", "y_wheel"]
 y = [0.0, 1.0]
