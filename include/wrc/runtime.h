@@ -84,7 +84,8 @@ typedef struct wrc_table wrc_table;
 #define WRC_MAX_AXES 8
 
 /* The limits on a table's axes and values and on the velocity (WRC_AXIS_*, WRC_VALUE_*,
- * WRC_VELOCITY_*): the generator checks them when it writes a table, the runtime when it reads one. */
+ * WRC_VELOCITY_*): the generator checks them when it writes a table, the runtime when it
+ * reads one. */
 #include "wrc/table_limits.h"
 
 /* ---------------------------------------------------------------------------------------------
