@@ -28,6 +28,7 @@
 #include "generator/sha256.h"
 #include "generator/sweep.h"
 #include "generator/table_data.h"
+#include "runtime/format/little_endian.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
 #include "wrc/generator/generator.h"
@@ -94,16 +95,18 @@ std::filesystem::path WithSuffix(const std::filesystem::path& path, const char* 
   return std::filesystem::path(path.string() + suffix);
 }
 
-void PutU32(std::string& out, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+// A rank's request for work: how many of its workers wait (u32).
+std::string EncodeRequest(std::size_t waiting) {
+  std::string request;
+  le::PutU32(request, static_cast<std::uint32_t>(waiting));
+  return request;
 }
-std::uint32_t GetU32(const std::string& in, std::size_t offset) {
-  if (offset + 4 > in.size()) throw std::runtime_error("malformed message (truncated)");
-  std::uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) {
-    v |= static_cast<std::uint32_t>(static_cast<unsigned char>(in[offset + i])) << (8 * i);
-  }
-  return v;
+
+std::size_t DecodeRequest(const std::string& bytes) {
+  le::Reader in(bytes);
+  const std::uint32_t waiting = in.U32();
+  if (!in.AtEnd()) throw std::runtime_error("MPI protocol: malformed request for work");
+  return waiting;
 }
 
 // The sink of rank 0: stores each point and appends it to the journal.
@@ -273,138 +276,150 @@ std::string AwaitMessage(Cluster& cluster, int wanted_tag, int* source) {
   }
 }
 
-GenerateSummary RunRoot(const RunContext& run) {
-  const auto start = std::chrono::steady_clock::now();
-  const Scene& scene = run.scene;
+// Every other rank must solve the same scene with the same profiles: its hello is its
+// fingerprint of them.
+void CheckRankFingerprints(const RunContext& run) {
+  for (int r = 1; r < run.cluster->size(); ++r) {
+    int source = 0;
+    const std::string hello = AwaitMessage(*run.cluster, gen::kTagHello, &source);
+    if (hello != run.fingerprint) {
+      throw InputError("MPI rank " + std::to_string(source) +
+                       " sees a different scene or different profile files than rank 0; "
+                       "every rank must read the same files");
+    }
+  }
+}
+
+// Continues the journal of an interrupted run (--resume), its points into `data`.
+JournalWriter ContinueJournal(const RunContext& run, const std::filesystem::path& path,
+                              const JournalHeader& header, TableData& data) {
+  if (!run.options.resume) {
+    throw InputError(path.string() +
+                     " exists: an earlier run of this table was interrupted. Pass --resume to "
+                     "continue it (finished points are reused), or delete the journal to start "
+                     "over");
+  }
+  gen::JournalContents contents;
+  JournalWriter journal = JournalWriter::Continue(path, header, &contents);
+  for (JournalRecord& record : contents.records) data.Store(record.index, record.result);
+  if (contents.valid_bytes < contents.file_bytes && run.options.progress != ProgressMode::kOff) {
+    std::fprintf(stderr, "wrc generate: dropped %llu bytes of a torn record at the end of %s\n",
+                 static_cast<unsigned long long>(contents.file_bytes - contents.valid_bytes),
+                 path.c_str());
+  }
+  return journal;
+}
+
+// The journal of this run: continued when one exists, else created next to the output.
+JournalWriter OpenJournal(const RunContext& run, const std::filesystem::path& path,
+                          TableData& data) {
+  const std::filesystem::path output = run.options.output;
+  const std::filesystem::path directory =
+      output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(directory)) {
+    throw InputError(output.string() + ": the directory " + directory.string() + " does not exist");
+  }
+  const JournalHeader header{run.fingerprint, data.status.size(),
+                             static_cast<std::uint32_t>(run.scene.outputs.size())};
+  if (std::filesystem::exists(path)) return ContinueJournal(run, path, header, data);
+  if (run.options.resume && run.options.progress != ProgressMode::kOff) {
+    std::fprintf(stderr,
+                 "wrc generate: no journal %s to resume from; starting from the beginning\n",
+                 path.c_str());
+  }
+  return JournalWriter::Create(path, header);
+}
+
+// Tells the other ranks whether rank 0 could start (an empty refusal: yes), so that none waits
+// forever for work that will not come.
+void ShareSetupOutcome(Cluster* cluster, const std::exception_ptr& failure) {
+  if (cluster == nullptr) return;
+  std::string refusal;
+  if (failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::exception& e) {
+      refusal = e.what();
+    } catch (...) {
+    }
+    if (refusal.empty()) refusal = "rank 0 could not start the run";
+  }
+  for (int r = 1; r < cluster->size(); ++r) cluster->Send(r, gen::kTagStart, refusal);
+  cluster->CompleteSends();
+}
+
+// Set-up on rank 0: the ranks' fingerprints checked, the journal opened (its points in `data`),
+// the outcome shared with every rank.
+JournalWriter SetUpRoot(const RunContext& run, const std::filesystem::path& journal_path,
+                        TableData& data) {
+  std::exception_ptr failure;
+  std::optional<JournalWriter> journal;
+  try {
+    if (run.cluster != nullptr) CheckRankFingerprints(run);
+    journal.emplace(OpenJournal(run, journal_path, data));
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  ShareSetupOutcome(run.cluster, failure);
+  if (failure) std::rethrow_exception(failure);
+  return std::move(*journal);
+}
+
+// One round of the other ranks' messages: requests for work answered, their points collected,
+// finished ranks counted. True when anything arrived.
+bool ServeRanks(Cluster& cluster, gen::TaskQueue& queue, Collector& collector, int* active_ranks) {
+  bool received = false;
+  int source = 0, tag = 0;
+  std::string bytes;
+  while (cluster.Receive(&source, &tag, &bytes)) {
+    received = true;
+    if (tag == gen::kTagRequest) {
+      cluster.Send(source, gen::kTagTasks, gen::EncodeTasks(queue.Take(DecodeRequest(bytes))));
+    } else if (tag == gen::kTagRecords) {
+      for (JournalRecord& record : gen::DecodeRecords(bytes)) {
+        collector.Accept(record.index, std::move(record.result));
+      }
+    } else if (tag == gen::kTagDone) {
+      --*active_ranks;
+    }
+  }
+  return received;
+}
+
+// Solves the pending segments on this rank's workers and serves the other ranks until every
+// segment is done or the run stops; the journal synced at least every kSyncInterval. Returns
+// the number of worker threads that ran.
+int SolveOnRoot(const RunContext& run, gen::TaskQueue& queue, Collector& collector,
+                gen::ProgressReporter& progress) {
   Cluster* cluster = run.cluster;
   const int ranks = cluster ? cluster->size() : 1;
-
-  GenerateSummary summary;
-  summary.points = scene.PointCount();
-  summary.threads = run.threads;
-  summary.ranks = ranks;
-  summary.journal = WithSuffix(run.options.output, ".journal");
-  summary.axes = scene.axes;
-
-  // Set-up, its failure shared with every rank so that none waits forever.
-  std::exception_ptr setup_failure;
-  std::optional<JournalWriter> journal;
-  TableData data(summary.points, scene.outputs.size());
-  try {
-    for (int r = 1; r < ranks; ++r) {
-      int source = 0;
-      const std::string hello = AwaitMessage(*cluster, gen::kTagHello, &source);
-      if (hello != run.fingerprint) {
-        throw InputError("MPI rank " + std::to_string(source) +
-                         " sees a different scene or different profile files than rank 0; "
-                         "every rank must read the same files");
-      }
+  gen::WorkerPool pool(run.scene, run.layout, run.threads, run.options.warm_start, queue, collector,
+                       run.stop);
+  int active_ranks = ranks - 1;
+  bool stop_sent = false;
+  auto last_sync = std::chrono::steady_clock::now();
+  while (!pool.Finished() || active_ranks > 0) {
+    const bool received = cluster && ServeRanks(*cluster, queue, collector, &active_ranks);
+    if (cluster && !stop_sent && run.stop.ShouldStop()) {
+      for (int r = 1; r < ranks; ++r) cluster->Send(r, gen::kTagStop, {});
+      stop_sent = true;
     }
-    const std::filesystem::path output = run.options.output;
-    const std::filesystem::path directory =
-        output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(directory)) {
-      throw InputError(output.string() + ": the directory " + directory.string() +
-                       " does not exist");
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_sync >= kSyncInterval) {
+      collector.Sync();
+      last_sync = now;
     }
-    const JournalHeader header{run.fingerprint, summary.points,
-                               static_cast<std::uint32_t>(scene.outputs.size())};
-    if (std::filesystem::exists(summary.journal)) {
-      if (!run.options.resume) {
-        throw InputError(summary.journal.string() +
-                         " exists: an earlier run of this table was interrupted. Pass --resume "
-                         "to continue it (finished points are reused), or delete the journal "
-                         "to start over");
-      }
-      gen::JournalContents contents;
-      journal.emplace(JournalWriter::Continue(summary.journal, header, &contents));
-      for (JournalRecord& record : contents.records) data.Store(record.index, record.result);
-      if (contents.valid_bytes < contents.file_bytes &&
-          run.options.progress != ProgressMode::kOff) {
-        std::fprintf(stderr, "wrc generate: dropped %llu bytes of a torn record at the end of %s\n",
-                     static_cast<unsigned long long>(contents.file_bytes - contents.valid_bytes),
-                     summary.journal.c_str());
-      }
-    } else {
-      if (run.options.resume && run.options.progress != ProgressMode::kOff) {
-        std::fprintf(stderr,
-                     "wrc generate: no journal %s to resume from; starting from the "
-                     "beginning\n",
-                     summary.journal.c_str());
-      }
-      journal.emplace(JournalWriter::Create(summary.journal, header));
-    }
-  } catch (...) {
-    setup_failure = std::current_exception();
+    progress.Update(collector.computed());
+    if (!received) std::this_thread::sleep_for(cluster ? kMpiPollInterval : kLocalPollInterval);
   }
-  if (cluster) {
-    std::string refusal;
-    if (setup_failure) {
-      try {
-        std::rethrow_exception(setup_failure);
-      } catch (const std::exception& e) {
-        refusal = e.what();
-      }
-      if (refusal.empty()) refusal = "rank 0 could not start the run";
-    }
-    for (int r = 1; r < ranks; ++r) cluster->Send(r, gen::kTagStart, refusal);
-    cluster->CompleteSends();
-  }
-  if (setup_failure) std::rethrow_exception(setup_failure);
-  TakeOverKnownPoints(run.hooks, data, *journal);
-  summary.reused = data.finished;
-
-  const SegmentLayout& layout = run.layout;
-  gen::TaskQueue queue(PendingSegments(layout, data), run.stop);
-  Collector collector(data, *journal);
-  gen::ProgressReporter progress(run.options.progress, summary.points, summary.reused);
-  {
-    gen::WorkerPool pool(scene, layout, run.threads, run.options.warm_start, queue, collector,
-                         run.stop);
-    summary.threads = pool.threads();  // fewer than asked when the system refused some
-    int active_ranks = ranks - 1;
-    bool stop_sent = false;
-    auto last_sync = std::chrono::steady_clock::now();
-    while (!pool.Finished() || active_ranks > 0) {
-      bool received = false;
-      if (cluster) {
-        int source = 0, tag = 0;
-        std::string bytes;
-        while (cluster->Receive(&source, &tag, &bytes)) {
-          received = true;
-          if (tag == gen::kTagRequest) {
-            cluster->Send(source, gen::kTagTasks, gen::EncodeTasks(queue.Take(GetU32(bytes, 0))));
-          } else if (tag == gen::kTagRecords) {
-            for (JournalRecord& record : gen::DecodeRecords(bytes)) {
-              collector.Accept(record.index, std::move(record.result));
-            }
-          } else if (tag == gen::kTagDone) {
-            --active_ranks;
-          }
-        }
-        if (!stop_sent && run.stop.ShouldStop()) {
-          for (int r = 1; r < ranks; ++r) cluster->Send(r, gen::kTagStop, {});
-          stop_sent = true;
-        }
-      }
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_sync >= kSyncInterval) {
-        collector.Sync();
-        last_sync = now;
-      }
-      progress.Update(collector.computed());
-      if (!received) {
-        std::this_thread::sleep_for(cluster ? kMpiPollInterval : kLocalPollInterval);
-      }
-    }
-    pool.Join();
-    collector.Sync();
-    pool.RethrowIfFailed();
-  }
+  pool.Join();
+  collector.Sync();
+  pool.RethrowIfFailed();
   if (cluster) cluster->CompleteSends();
-  summary.computed = collector.computed();
-  progress.Finish(summary.computed);
+  return pool.threads();  // fewer than asked when the system refused some
+}
 
+void CountOutcomes(const TableData& data, GenerateSummary& summary) {
   for (const std::int8_t status : data.status) {
     if (status >= 0) ++summary.status_counts[status];
   }
@@ -412,10 +427,15 @@ GenerateSummary RunRoot(const RunContext& run) {
     if (summary.failures.size() == kReportedFailures) break;
     summary.failures.emplace_back(point, message);
   }
+}
 
+// A finished grid becomes the table (or, for a refinement pass, stays in its journal); an
+// unfinished one leaves its journal for --resume.
+void FinishRoot(const RunContext& run, TableData& data, JournalWriter& journal,
+                GenerateSummary& summary) {
   if (data.finished == summary.points && !run.hooks.write_table) {
     // A refinement pass: its journal is its record; the table is written after the last pass.
-    journal->Close();
+    journal.Close();
     summary.complete = true;
     if (run.hooks.data_out != nullptr) *run.hooks.data_out = std::move(data);
   } else if (data.finished == summary.points) {
@@ -424,19 +444,45 @@ GenerateSummary RunRoot(const RunContext& run) {
     provenance.rail_sha256 = run.rail_sha;
     provenance.wheel_sha256 = run.wheel_sha;
     provenance.created = gen::IsoTimestampUtc();
-    provenance.z_warm_start = WarmStartDescription(layout, run.options.warm_start);
+    provenance.z_warm_start = WarmStartDescription(run.layout, run.options.warm_start);
     provenance.attributes = run.hooks.attributes;
-    WriteTableSafely(temporary, run.options.output, scene, data, provenance);
+    WriteTableSafely(temporary, run.options.output, run.scene, data, provenance);
     SyncDirectory(run.options.output);
     // Only now is the journal redundant; a crash before this line leaves a complete journal,
     // from which --resume rewrites the table without solving anything.
-    journal->Close();
+    journal.Close();
     std::filesystem::remove(summary.journal);
     summary.complete = true;
   } else {
-    journal->Close();
+    journal.Close();
     summary.interrupted = true;
   }
+}
+
+GenerateSummary RunRoot(const RunContext& run) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene& scene = run.scene;
+  GenerateSummary summary;
+  summary.points = scene.PointCount();
+  summary.threads = run.threads;
+  summary.ranks = run.cluster ? run.cluster->size() : 1;
+  summary.journal = WithSuffix(run.options.output, ".journal");
+  summary.axes = scene.axes;
+
+  TableData data(summary.points, scene.outputs.size());
+  JournalWriter journal = SetUpRoot(run, summary.journal, data);
+  TakeOverKnownPoints(run.hooks, data, journal);
+  summary.reused = data.finished;
+
+  gen::TaskQueue queue(PendingSegments(run.layout, data), run.stop);
+  Collector collector(data, journal);
+  gen::ProgressReporter progress(run.options.progress, summary.points, summary.reused);
+  summary.threads = SolveOnRoot(run, queue, collector, progress);
+  summary.computed = collector.computed();
+  progress.Finish(summary.computed);
+
+  CountOutcomes(data, summary);
+  FinishRoot(run, data, journal, summary);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
@@ -481,9 +527,7 @@ GenerateSummary RunOtherRank(const RunContext& run) {
       const std::size_t waiting = inbox.Waiting();
       if (!request_open && !no_more_work && !run.stop.ShouldStop() && waiting > 0 &&
           inbox.Queued() == 0) {
-        std::string request;
-        PutU32(request, static_cast<std::uint32_t>(waiting));
-        cluster.Send(0, gen::kTagRequest, request);
+        cluster.Send(0, gen::kTagRequest, EncodeRequest(waiting));
         request_open = true;
       }
       std::string records = outbox.Take();

@@ -47,31 +47,7 @@ using le::PutF64;
 using le::PutU32;
 using le::PutU64;
 
-// Reads little-endian fields from a byte range; every read is bounds-checked by the caller.
-class Reader {
- public:
-  Reader(std::string_view bytes, std::size_t offset) : bytes_(bytes), offset_(offset) {}
-  std::size_t offset() const { return offset_; }
-  std::size_t remaining() const { return bytes_.size() - offset_; }
-  std::uint64_t U(int n) {
-    const std::uint64_t v = le::LoadUnsigned(bytes_.data() + offset_, n);
-    offset_ += static_cast<std::size_t>(n);
-    return v;
-  }
-  std::uint32_t U32() { return static_cast<std::uint32_t>(U(4)); }
-  std::uint64_t U64() { return U(8); }
-  double F64() { return le::LoadF64(Take(8).data()); }
-  float F32() { return le::LoadF32(Take(4).data()); }
-  std::string_view Take(std::size_t n) {
-    const std::string_view part = bytes_.substr(offset_, n);
-    offset_ += n;
-    return part;
-  }
-
- private:
-  std::string_view bytes_;
-  std::size_t offset_;
-};
+using le::Reader;
 
 // Decodes one record at the reader's offset; false when it is incomplete or damaged (the
 // reader's offset is then meaningless).
@@ -88,7 +64,7 @@ bool DecodeRecord(std::string_view bytes, Reader& reader, JournalRecord* record)
   if (Crc32(bytes.substr(start, 8 + static_cast<std::size_t>(length))) != stored_crc) return false;
 
   record->index = payload.U64();
-  const auto status = static_cast<std::int8_t>(payload.U(1));
+  const auto status = static_cast<std::int8_t>(payload.U8());
   if (status < 0 || status >= kPointStatusCount) return false;
   record->result.status = static_cast<PointStatus>(status);
   record->result.solve_time_s = payload.F32();

@@ -33,6 +33,7 @@
 #include "generator/refine.h"
 #include "generator/sha256.h"
 #include "generator/sweep.h"
+#include "runtime/format/little_endian.h"
 #include "runtime/hdf5/table_schema.h"
 #include "runtime/interp/cubic_line.h"
 #include "wrc/core/errors.h"
@@ -176,8 +177,11 @@ PointResult ResultAt(const TableData& data, std::uint64_t point) {
   return r;
 }
 
+// The point's coordinates as bytes: a map key, and part of the check journal's fingerprint.
 std::string PointKey(const std::vector<double>& point) {
-  return std::string(reinterpret_cast<const char*>(point.data()), point.size() * sizeof(double));
+  std::string key;
+  for (const double v : point) le::PutF64(key, v);
+  return key;
 }
 
 // ---- the passes file ------------------------------------------------------------------------
@@ -761,34 +765,30 @@ ErrorEstimate Summarise(std::vector<double> worst, std::vector<std::vector<doubl
 
 // ---- the pass loop --------------------------------------------------------------------------
 
+// A pass's grid for the other ranks: u8 kind, then per axis u64 n and n f64 nodes.
 std::string EncodeAxes(PassKind kind, const Axes& axes) {
-  std::string bytes(1, static_cast<char>(kind));
+  std::string bytes;
+  le::PutU8(bytes, static_cast<std::uint8_t>(kind));
   for (const SceneAxis& axis : axes) {
-    const std::uint64_t n = axis.values.size();
-    bytes.append(reinterpret_cast<const char*>(&n), sizeof n);
-    bytes.append(reinterpret_cast<const char*>(axis.values.data()), n * sizeof(double));
+    le::PutU64(bytes, axis.values.size());
+    for (const double v : axis.values) le::PutF64(bytes, v);
   }
   return bytes;
 }
 
 PassKind DecodeAxes(const std::string& bytes, const Scene& scene, Axes* axes) {
-  if (bytes.empty()) throw std::runtime_error("MPI protocol: empty refinement message");
-  const auto kind = static_cast<PassKind>(bytes[0]);
+  le::Reader in(bytes);
+  const auto kind = static_cast<PassKind>(in.U8());
+  if (!in.ok()) throw std::runtime_error("MPI protocol: empty refinement message");
   if (kind == PassKind::kStop) return kind;
   *axes = scene.axes;
-  std::size_t offset = 1;
   for (SceneAxis& axis : *axes) {
-    std::uint64_t n = 0;
-    if (offset + sizeof n > bytes.size()) throw std::runtime_error("MPI protocol: truncated axes");
-    std::memcpy(&n, bytes.data() + offset, sizeof n);
-    offset += sizeof n;
-    if (offset + n * sizeof(double) > bytes.size()) {
-      throw std::runtime_error("MPI protocol: truncated axes");
-    }
+    const std::uint64_t n = in.U64();
+    if (n > in.remaining() / 8) throw std::runtime_error("MPI protocol: truncated axes");
     axis.values.resize(n);
-    std::memcpy(axis.values.data(), bytes.data() + offset, n * sizeof(double));
-    offset += n * sizeof(double);
+    for (double& v : axis.values) v = in.F64();
   }
+  if (!in.AtEnd()) throw std::runtime_error("MPI protocol: malformed axes");
   return kind;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "runtime/format/little_endian.h"
 #include "wrc/generator/interrupt.h"
 
 namespace wrc::gen {
@@ -48,61 +49,36 @@ std::vector<std::size_t> SegmentLayout::Indices(std::uint64_t point) const {
 // ---------------------------------------------------------------------------------------------
 // Task encoding: u32 count, then per task u64 segment, u32 n, n done bytes, n × f64 z.
 
-namespace {
-
-void Put(std::string& out, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-
-std::uint64_t Get(const std::string& in, std::size_t& offset, int bytes) {
-  if (offset + static_cast<std::size_t>(bytes) > in.size()) {
-    throw std::runtime_error("malformed task message (truncated)");
-  }
-  std::uint64_t v = 0;
-  for (int i = 0; i < bytes; ++i) {
-    v |= static_cast<std::uint64_t>(static_cast<unsigned char>(in[offset + i])) << (8 * i);
-  }
-  offset += static_cast<std::size_t>(bytes);
-  return v;
-}
-
-}  // namespace
-
 std::string EncodeTasks(const std::vector<SegmentTask>& tasks) {
   std::string out;
-  Put(out, tasks.size(), 4);
+  le::PutU32(out, static_cast<std::uint32_t>(tasks.size()));
   for (const SegmentTask& task : tasks) {
-    Put(out, task.segment, 8);
-    Put(out, task.done.size(), 4);
-    for (const std::uint8_t d : task.done) Put(out, d, 1);
-    for (std::size_t k = 0; k < task.done.size(); ++k) {
-      std::uint64_t bits = 0;
-      std::memcpy(&bits, &task.known_z[k], sizeof bits);
-      Put(out, bits, 8);
-    }
+    le::PutU64(out, task.segment);
+    le::PutU32(out, static_cast<std::uint32_t>(task.done.size()));
+    for (const std::uint8_t d : task.done) le::PutU8(out, d);
+    for (std::size_t k = 0; k < task.done.size(); ++k) le::PutF64(out, task.known_z[k]);
   }
   return out;
 }
 
 std::vector<SegmentTask> DecodeTasks(const std::string& bytes) {
-  std::size_t offset = 0;
-  const std::uint64_t count = Get(bytes, offset, 4);
+  le::Reader in(bytes);
+  const std::uint32_t count = in.U32();
   std::vector<SegmentTask> tasks;
-  for (std::uint64_t t = 0; t < count; ++t) {
+  for (std::uint32_t t = 0; t < count && in.ok(); ++t) {
     SegmentTask task;
-    task.segment = Get(bytes, offset, 8);
-    const std::uint64_t n = Get(bytes, offset, 4);
-    if (n > bytes.size()) throw std::runtime_error("malformed task message (length)");
-    task.done.resize(static_cast<std::size_t>(n));
-    task.known_z.resize(static_cast<std::size_t>(n));
-    for (std::uint8_t& d : task.done) d = static_cast<std::uint8_t>(Get(bytes, offset, 1));
-    for (double& z : task.known_z) {
-      const std::uint64_t bits = Get(bytes, offset, 8);
-      std::memcpy(&z, &bits, sizeof z);
-    }
+    task.segment = in.U64();
+    const std::uint32_t n = in.U32();
+    // Nine bytes a point: a count beyond what is left is damage, refused before allocating.
+    if (n > in.remaining() / 9) throw std::runtime_error("malformed task message (length)");
+    task.done.resize(n);
+    task.known_z.resize(n);
+    for (std::uint8_t& d : task.done) d = in.U8();
+    for (double& z : task.known_z) z = in.F64();
     tasks.push_back(std::move(task));
   }
-  if (offset != bytes.size()) throw std::runtime_error("malformed task message (trailing bytes)");
+  if (!in.ok()) throw std::runtime_error("malformed task message (truncated)");
+  if (!in.AtEnd()) throw std::runtime_error("malformed task message (trailing bytes)");
   return tasks;
 }
 
