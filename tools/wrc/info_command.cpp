@@ -9,11 +9,9 @@
 #include <sstream>
 #include <string>
 
-#include "runtime/format/flat_table.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/generator/generator.h"
-#include "wrc/runtime.hpp"
 
 namespace wrc::cli {
 namespace {
@@ -33,43 +31,6 @@ std::string Attribute(const TableInfo& info, const std::string& name) {
 }
 
 nlohmann::json Refinement(const std::string& path, const TableInfo& info);
-
-// The value of TableInfo::format for a flat table (the `format` attribute inside is the HDF5
-// table's, kept as exported).
-constexpr const char* kFlatFormat = "wrc-flat-table";
-
-// What `wrc info` shows of a flat table: all but the solve times, the failures' messages and
-// the profiles, which stay in the HDF5 table it was exported from.
-TableInfo InfoOfFlat(const format::TableContent& content) {
-  TableInfo info;
-  info.format = kFlatFormat;
-  info.format_version = format::kFlatVersion;
-  info.sealed = true;
-  for (const auto& [name, value] : content.attributes) info.attributes.emplace_back(name, value);
-  for (const format::AxisContent& axis : content.axes) {
-    info.axes.push_back({axis.name, axis.unit, axis.values});
-  }
-  info.points = content.num_nodes();
-  const std::size_t n_out = content.outputs.size();
-  for (std::size_t k = 0; k < n_out; ++k) {
-    TableInfo::Output output{content.outputs[k].name, content.outputs[k].unit};
-    for (std::size_t node = 0; node < info.points; ++node) {
-      if (content.status[node] != 0) continue;
-      const double v = content.values[node * n_out + k];
-      output.min = std::isnan(output.min) ? v : std::min(output.min, v);
-      output.max = std::isnan(output.max) ? v : std::max(output.max, v);
-    }
-    info.outputs.push_back(output);
-  }
-  for (const std::int8_t status : content.status) {
-    if (status >= 0 && status < kPointStatusCount) {
-      ++info.status_counts[status];
-    } else {
-      ++info.other_status;
-    }
-  }
-  return info;
-}
 
 // Texts from the file (attributes, messages) need not be UTF-8: shown with U+FFFD in their place
 // rather than ending the output with the JSON library's exception.
@@ -232,7 +193,7 @@ void PrintRefinement(const std::string& path, const TableInfo& info) {
 void PrintHuman(const std::string& path, const TableInfo& info) {
   std::cout << path << ": " << info.format << " version " << info.format_version << ", "
             << info.points << " points\n";
-  const bool flat = info.format == kFlatFormat;
+  const bool flat = info.format == kFlatTableFormat;
   if (flat) {
     std::cout << "  digest                intact (a SHA-256 of every byte after the header)\n"
                  "  a flat table (wrc export): solve times, failure messages and profiles are "
@@ -313,12 +274,7 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->callback([=]() {
     try {
-      // The runtime's validation first (types, shapes, axes, values, format version): what
-      // info reads afterwards has passed every check a simulator's open makes.
-      const Table validated(*path);
-      const TableInfo info = format::IsFlatTableFile(*path)
-                                 ? InfoOfFlat(format::ReadTableContent(*path))
-                                 : ReadTableInfo(*path);
+      const TableInfo info = ReadTableInfo(*path);
       if (*as_json) {
         std::cout << InfoJson(*path, info).dump(1, ' ', false, kReplaceInvalidUtf8) << '\n';
       } else {

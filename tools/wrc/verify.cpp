@@ -16,7 +16,7 @@
 #include <utility>
 
 #include "runtime/format/flat_table.h"
-#include "runtime/hdf5/hdf5.h"
+#include "runtime/format/table_content.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
@@ -35,18 +35,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void RestoreProfile(const h5::File& file, const std::string& name, const fs::path& target) {
-  const h5::Dataset d = file.OpenGroup("profiles").OpenDataset(name);
-  const std::vector<std::uint8_t> bytes = d.Read<std::uint8_t>();
-  // Bytes that differ from the recorded digest would verify the table against another profile.
-  const std::string digest = name + "_profile_sha256";
-  CheckStoredProfileDigest(
-      file.FileName(), name,
-      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-      file.HasAttribute(digest) ? file.ReadStringAttribute(digest) : std::string());
+// The table's copy of a profile, checked against its recorded digest (a copy that differs
+// would verify the table against another profile), written to `target`.
+void RestoreProfile(const fs::path& table, const std::string& name, const fs::path& target) {
+  const std::string bytes = ReadStoredProfile(table, name);
   fs::create_directories(target.parent_path());
-  WriteFileAtomically(target,
-                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  WriteFileAtomically(target, bytes);
 }
 
 // Spread (max − min) of the finite values, or `if_flat` when there is none.
@@ -284,6 +278,17 @@ void AssignLoads(const Scene& scene, const std::vector<std::string>& outputs,
   }
 }
 
+// Each output's node values, in the table's storage order, read as the runtime reads them.
+std::vector<std::vector<double>> OutputNodeValues(const std::string& table) {
+  const format::TableContent content = format::ReadTableContent(table);
+  const std::size_t n_out = content.outputs.size();
+  std::vector<std::vector<double>> values(n_out, std::vector<double>(content.num_nodes()));
+  for (std::size_t node = 0; node < content.num_nodes(); ++node) {
+    for (std::size_t o = 0; o < n_out; ++o) values[o][node] = content.values[node * n_out + o];
+  }
+  return values;
+}
+
 }  // namespace
 
 StoredScene::~StoredScene() {
@@ -302,8 +307,7 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
                      "failures: use the HDF5 table it was exported from");
   }
   auto stored = std::make_unique<StoredScene>();
-  const h5::File file = h5::File::Open(table.string());
-  const std::string text = file.ReadStringAttribute("scene");
+  const std::string text = validated.attribute(schema::kScene);
   stored->scratch = fs::temp_directory_path() /
                     ("wrc_verify_" + std::to_string(std::random_device{}()) + "_" +
                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
@@ -315,7 +319,7 @@ std::unique_ptr<StoredScene> LoadStoredScene(const fs::path& table) {
                               std::pair{"wheel", &stored->scene.base.wheel}}) {
     const fs::path file_name = source->path.filename();
     source->path = stored->scratch / name / (file_name.empty() ? fs::path(name) : file_name);
-    RestoreProfile(file, name, source->path);
+    RestoreProfile(table, name, source->path);
   }
   // Read and spline the profiles once for all sampled points (as LoadScene does).
   for (auto [source, kind] : {std::pair{&stored->scene.base.rail, ProfileKind::kRail},
@@ -420,14 +424,9 @@ Verification VerifyTable(const VerifyOptions& opt) {
   std::vector<std::vector<double>> axes;
   for (int a = 0; a < table.num_axes(); ++a) axes.push_back(table.axis_values(a));
   // Output values over the table, for the ranges, the patch counts and the near-jump sampler.
-  const h5::File file = h5::File::Open(opt.table);
-  const h5::Group outputs_group = file.OpenGroup(schema::kOutputs);
-  std::vector<std::vector<double>> values(n_out);
+  const std::vector<std::vector<double>> values = OutputNodeValues(opt.table);
   std::vector<ErrorScale> scales(n_out);
-  for (std::size_t o = 0; o < n_out; ++o) {
-    values[o] = outputs_group.OpenDataset(v.output_names[o]).Read<double>();
-    scales[o] = ErrorScaleOf(values[o]);
-  }
+  for (std::size_t o = 0; o < n_out; ++o) scales[o] = ErrorScaleOf(values[o]);
   const auto patches_output = std::find(v.output_names.begin(), v.output_names.end(), "n_patches");
   const std::vector<std::vector<double>> points =
       opt.near_jumps ? SampleNearJumps(axes, values, opt.samples, opt.seed)

@@ -242,8 +242,17 @@ struct TableInfo {
   std::size_t rail_profile_bytes = 0, wheel_profile_bytes = 0;
 };
 
-/// Reads a table's layout, status counts and provenance. Throws InputError when the file is not
-/// a readable wrc table.
+/// TableInfo::format of a flat table (the `format` attribute inside is the HDF5 table's, kept as
+/// exported).
+inline constexpr const char* kFlatTableFormat = "wrc-flat-table";
+
+/// Reads a table's layout, status counts and provenance, from an HDF5 or a flat table, with the
+/// runtime's checks. Throws InputError when the file is not a readable wrc table.
 TableInfo ReadTableInfo(const std::filesystem::path& path);
+
+/// The bytes of the profile file `name` ("rail" or "wheel") stored in an HDF5 table, checked
+/// against the digest the table records. Throws InputError when the table holds none, or other
+/// bytes than it recorded.
+std::string ReadStoredProfile(const std::filesystem::path& table, const std::string& name);
 
 }  // namespace wrc
