@@ -199,8 +199,7 @@ void WriteAll(int fd, std::string_view bytes, const std::filesystem::path& path)
     const ssize_t written = ::write(fd, bytes.data(), bytes.size());
     if (written < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error(path.string() +
-                               ": cannot append to the journal: " + std::strerror(errno));
+      throw InputError(path.string() + ": cannot append to the journal: " + std::strerror(errno));
     }
     bytes.remove_prefix(static_cast<std::size_t>(written));
   }
@@ -333,8 +332,8 @@ void JournalWriter::Append(std::string_view bytes) { WriteAll(fd_, bytes, path_)
 
 void JournalWriter::Sync() {
   if (fd_ >= 0 && ::fdatasync(fd_) != 0) {
-    throw std::runtime_error(path_.string() +
-                             ": cannot flush the journal to disk: " + std::strerror(errno));
+    throw InputError(path_.string() +
+                     ": cannot flush the journal to disk: " + std::strerror(errno));
   }
 }
 

@@ -44,12 +44,14 @@ bool LaunchedWithSeveralRanks() {
 
 namespace {
 
+// A failing MPI call is the launch's or the installation's (a rank that died, a library without
+// thread support), the user's to fix like any other environment: InputError.
 void CheckMpi(int code, const char* what) {
   if (code != MPI_SUCCESS) {
     char text[MPI_MAX_ERROR_STRING];
     int length = 0;
     MPI_Error_string(code, text, &length);
-    throw std::runtime_error(std::string("MPI: ") + what + ": " + std::string(text, length));
+    throw InputError(std::string("MPI: ") + what + ": " + std::string(text, length));
   }
 }
 
@@ -62,7 +64,7 @@ class MpiCluster : public Cluster {
     // MPI_THREAD_FUNNELED promises. SINGLE would formally forbid other threads to exist.
     if (provided < MPI_THREAD_FUNNELED) {
       MPI_Finalize();
-      throw std::runtime_error("MPI: the library does not support MPI_THREAD_FUNNELED");
+      throw InputError("MPI: the library does not support MPI_THREAD_FUNNELED");
     }
     // Return errors instead of aborting, so that they reach the user as messages.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);

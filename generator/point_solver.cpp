@@ -86,20 +86,10 @@ PointResult SolveOnce(const Scene& scene, const std::vector<std::size_t>& indice
     } else {
       point.message = JoinWarnings(result.warnings);  // the doubts about a solved point
     }
-  } catch (const std::bad_alloc&) {
-    // Not a property of the point: stored as a failed point it would stay in the table after
-    // memory was back. The run stops instead; its journal keeps the points solved so far.
-    throw std::runtime_error(
-        "out of memory while solving a point; the points solved so far are kept: resume with "
-        "fewer --threads or more memory");
-  } catch (const std::exception& e) {
-    point.status = PointStatus::kError;
-    point.values.assign(scene.outputs.size(), kNaN);
-    point.message = e.what();
   } catch (...) {
     point.status = PointStatus::kError;
     point.values.assign(scene.outputs.size(), kNaN);
-    point.message = "unknown exception";
+    point.message = PointFailureMessage(std::current_exception());
   }
   return point;
 }
@@ -109,6 +99,26 @@ bool Failed(const PointResult& point) {
 }
 
 }  // namespace
+
+std::string PointFailureMessage(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const ResourceError&) {
+    throw;  // an InputError too, but no property of the point
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const NumericalError& e) {
+    return e.what();
+  } catch (const std::bad_alloc&) {
+    // Not a property of the point: stored as a failed point it would stay in the table after
+    // memory was back. The run stops instead; its journal keeps the points solved so far.
+    throw ResourceError(
+        "out of memory while solving a point; the points solved so far are kept: resume with "
+        "fewer --threads or more memory");
+  }
+  // Anything else (std::logic_error above all) is a bug in wrc: it propagates and stops the run
+  // with its message rather than become a table entry.
+}
 
 PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
                             double z_guess, WheelRailCache* cache) {

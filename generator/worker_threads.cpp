@@ -6,6 +6,8 @@
 #include <system_error>
 #include <utility>
 
+#include "wrc/core/errors.h"
+
 namespace wrc::gen {
 
 WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const std::string& who) {
@@ -30,8 +32,8 @@ WorkerThreads::WorkerThreads(int count, const std::function<void()>& body, const
     }
   }
   if (threads_.empty() && count > 0) {
-    throw std::runtime_error(who + ": the system refused to start a worker thread (" + refused +
-                             "); raise the process limit (ulimit -u) or free memory");
+    throw ResourceError(who + ": the system refused to start a worker thread (" + refused +
+                        "); raise the process limit (ulimit -u) or free memory");
   }
   if (!refused.empty()) {
     std::cerr << "warning: " << who << ": the system started " << threads_.size() << " of " << count

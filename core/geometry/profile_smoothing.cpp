@@ -9,6 +9,7 @@
 #include <Eigen/Sparse>
 
 #include "core/geometry/profile_internal.h"
+#include "wrc/core/errors.h"
 
 namespace wrc::profile_detail {
 
@@ -76,7 +77,7 @@ void SmoothPoints(std::vector<double>& y, std::vector<double>& z, double wavelen
   matrix.setFromTriplets(entries.begin(), entries.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
   if (solver.info() != Eigen::Success) {
-    throw std::runtime_error("SmoothPoints: factorisation of the smoothing system failed");
+    throw NumericalError("SmoothPoints: factorisation of the smoothing system failed");
   }
 
   for (std::vector<double>* values : {&y, &z}) {

@@ -7,7 +7,7 @@
 namespace wrc {
 
 GslError::GslError(const std::string& function, int status)
-    : std::runtime_error(function + ": " + gsl_strerror(status)), status_(status) {}
+    : NumericalError(function + ": " + gsl_strerror(status)), status_(status) {}
 
 namespace gsl {
 

@@ -9,10 +9,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "wrc/core/errors.h"
+
 namespace wrc {
 
 /// A GSL routine reported a failure. what() reads "<function>: <gsl_strerror text>".
-class GslError : public std::runtime_error {
+class GslError : public NumericalError {
  public:
   /// @param function The GSL routine (or wrapper) that failed, for the message.
   /// @param status   The GSL status code (GSL_EDOM, GSL_EINVAL, ...).

@@ -207,6 +207,15 @@ void Search(Problem& pb, double reach, double z_limit) {
 // results at the heights already solved are the same with either search.
 void CoverHeight(Problem& pb, double z, double first_contact) {
   if (z - first_contact < pb.reach) return;
+  // Sunk deeper than the wheel's radius, the wheel has passed through the rail: no contact
+  // geometry exists there (it would not even be finite), so the height cannot be solved, as
+  // one whose patch is too large. Only a far-off start of the fz iteration comes here.
+  const double radius = pb.c->wheelset.nominal_radius;
+  if (!(z - first_contact <= radius)) {
+    throw InputError(pb.c->source_name + ": at wheelset z = " + FormatNumber(z) +
+                     " mm the wheel would sink more than its radius (" + FormatNumber(radius) +
+                     " mm) into the rail");
+  }
   // Half as far again: the secant steps of the iteration that follow stay inside.
   Search(pb, std::max(2.0 * pb.reach, 1.5 * (z - first_contact)),
          std::numeric_limits<double>::infinity());
@@ -624,9 +633,10 @@ WheelRailResult SolveForPrescribedFz(Problem& pb, double first_contact, WheelRai
   const Case& c = *pb.c;
   const WheelRailOptions& options = *pb.options;
   const double fz = *c.state.fz;
-  double z0 = std::isfinite(options.z_guess) && options.z_guess > first_contact
-                  ? options.z_guess
-                  : HertzGuess(pb, fz, first_contact);
+  // A guess deeper than the wheel's radius is no start at all (CoverHeight): the cold start.
+  const bool usable_guess = options.z_guess > first_contact &&
+                            options.z_guess - first_contact <= c.wheelset.nominal_radius;
+  double z0 = usable_guess ? options.z_guess : HertzGuess(pb, fz, first_contact);
   if (!(z0 > first_contact)) z0 = first_contact + 0.01;
   wr::FzIterationOptions iteration;
   iteration.fz_tolerance = options.fz_tolerance;

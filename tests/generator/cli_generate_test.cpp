@@ -316,6 +316,36 @@ TEST_F(CliGenerateTest, ResumingWithAnotherSceneIsRefused) {
   EXPECT_NE(result.err.find("other.h5.journal"), std::string::npos) << result.err;
 }
 
+// A damaged journal is the user's file, not a bug: exit 2, and the message names the file.
+TEST_F(CliGenerateTest, ResumingFromADamagedJournalIsBadInput) {
+  const fs::path table = *dir_ / "damaged.h5";
+  const fs::path journal = table.string() + ".journal";
+  GenerateOptions options;
+  options.output = table;
+  options.threads = 1;
+  options.max_points = 1;
+  options.progress = ProgressMode::kOff;
+  options.mpi = MpiMode::kOff;
+  GenerateTable(LoadScene(scene_), options);
+  std::string bytes = test::ReadFile(journal);
+  ASSERT_GT(bytes.size(), 12u);
+  bytes[12] = static_cast<char>(bytes[12] ^ 0x01);  // inside the header: its CRC no longer holds
+  test::WriteFile(journal, bytes);
+  const test::CommandResult damaged =
+      test::RunCommand(Generate(scene_, table, "--resume"), dir_->path());
+  EXPECT_EQ(damaged.exit_code, 2) << damaged.err;
+  EXPECT_NE(damaged.err.find("wrc generate: error: "), std::string::npos) << damaged.err;
+  EXPECT_NE(damaged.err.find("damaged.h5.journal"), std::string::npos) << damaged.err;
+  EXPECT_NE(damaged.err.find("damaged"), std::string::npos) << damaged.err;
+
+  test::WriteFile(journal, "these are not the bytes of a journal\n");
+  const test::CommandResult foreign =
+      test::RunCommand(Generate(scene_, table, "--resume"), dir_->path());
+  EXPECT_EQ(foreign.exit_code, 2) << foreign.err;
+  EXPECT_NE(foreign.err.find("damaged.h5.journal: not a wrc journal"), std::string::npos)
+      << foreign.err;
+}
+
 TEST_F(CliGenerateTest, InfoDescribesTheTable) {
   const test::CommandResult json_result = test::RunCommand(
       Quoted(test::WrcBinary()) + " info " + Quoted(reference_.string()) + " --json", dir_->path());

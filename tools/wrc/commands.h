@@ -3,27 +3,12 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 #include <system_error>
 
+#include "tools/wrc/exit_codes.h"
+
 namespace wrc::cli {
-
-/// Exit codes (docs/reference/cli.md): 0 ok or no contact, 2 bad input, 3 not converged.
-enum ExitCode : int {
-  kExitOk = 0,
-  kExitGateFailed = 1,
-  kExitBadInput = 2,
-  kExitNotConverged = 3,
-  kExitInterrupted = 130,  ///< SIGINT or SIGTERM, as a shell reports a process ended by SIGINT
-};
-
-/// SIGINT or SIGTERM stopped a command before it finished; what() says how far it got and what
-/// was kept. Commands report it without "error:" and exit with kExitInterrupted.
-class Interrupted : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Option checks that say in words what a value must be: CLI11's PositiveNumber and
 /// NonNegativeNumber state their range as "0.000000 to 1797693...(309 digits).000000".

@@ -44,9 +44,8 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
       Export(*input, *output);
       FinishStandardOutput();
       *exit_code = kExitOk;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc export: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc export");
     }
   });
 }

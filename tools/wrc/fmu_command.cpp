@@ -187,9 +187,8 @@ void AddFmuCommand(CLI::App& app, int* exit_code) {
       PackFmu(*o);
       FinishStandardOutput();
       *exit_code = kExitOk;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc fmu: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc fmu");
     }
   });
 }

@@ -73,9 +73,8 @@ int RunSolve(int argc, char** argv) {
   }
   try {
     wrc::FinishStandardOutput();
-  } catch (const std::exception& e) {
-    std::cerr << "wrc: error: " << e.what() << '\n';
-    return wrc::cli::kExitBadInput;
+  } catch (...) {
+    return wrc::cli::ReportFailure("wrc");
   }
   return exit_code;
 }

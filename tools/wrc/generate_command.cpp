@@ -210,11 +210,8 @@ void AddGenerateCommand(CLI::App& app, int* exit_code) {
       if (*cold_start) std::cerr << " --no-warm-start";
       std::cerr << " --resume\n";
       *exit_code = kExitInterrupted;
-    } catch (const GenerateAborted&) {
-      *exit_code = kExitBadInput;  // MPI rank > 0: rank 0 reports why
-    } catch (const std::exception& e) {
-      std::cerr << "wrc generate: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc generate");  // MPI rank > 0 (GenerateAborted): silent
     }
   });
 }

@@ -252,9 +252,8 @@ void AddGeometryCommand(CLI::App& app, int* exit_code) {
       RunGeometry(*o);
       FinishStandardOutput();
       *exit_code = kExitOk;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc geometry: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc geometry");
     }
   });
 }

@@ -98,9 +98,8 @@ nlohmann::json RefineAttribute(const std::string& path, const TableInfo& info,
   nlohmann::json value =
       nlohmann::json::parse(Attribute(info, name), nullptr, /*allow_exceptions=*/false);
   if (value.type() != kind) {
-    throw std::runtime_error(path + ":/@" + name + ": not the JSON " +
-                             nlohmann::json(kind).type_name() +
-                             " wrc generate writes there; the table is damaged or was edited");
+    throw InputError(path + ":/@" + name + ": not the JSON " + nlohmann::json(kind).type_name() +
+                     " wrc generate writes there; the table is damaged or was edited");
   }
   return value;
 }
@@ -281,15 +280,15 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
         PrintHuman(*path, info);
       }
       *exit_code = kExitOk;
-    } catch (const std::exception& e) {
+    } catch (...) {
+      *exit_code = ReportFailure("wrc info");
       // As wrc solve --json: a program reading stdout gets an error object, not nothing.
-      std::cerr << "wrc info: error: " << e.what() << '\n';
       if (*as_json) {
-        std::cout << nlohmann::json{{"status", "error"}, {"message", e.what()}}.dump(
+        const std::string message = FailureOf(std::current_exception()).message;
+        std::cout << nlohmann::json{{"status", "error"}, {"message", message}}.dump(
                          1, ' ', false, kReplaceInvalidUtf8)
                   << '\n';
       }
-      *exit_code = kExitBadInput;
     }
   });
 }

@@ -78,12 +78,8 @@ void RunPlot(const char* name, int* exit_code, Plot plot) {
   try {
     for (const fs::path& file : plot()) std::cout << file.string() << '\n';
     *exit_code = kExitOk;
-  } catch (const TableError& e) {
-    std::cerr << "wrc plot " << name << ": error: " << e.what() << '\n';
-    *exit_code = kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "wrc plot " << name << ": error: " << e.what() << '\n';
-    *exit_code = kExitBadInput;
+  } catch (...) {
+    *exit_code = ReportFailure(std::string("wrc plot ") + name);
   }
 }
 

@@ -28,7 +28,7 @@ using nlohmann::json;
 namespace {
 
 int ExitCodeFor(SolverStatus s) {
-  return s == SolverStatus::kNotConverged ? kExitNotConverged : kExitOk;
+  return s == SolverStatus::kNotConverged ? kExitNumerical : kExitOk;
 }
 
 double Seconds(std::chrono::steady_clock::time_point t0) {
@@ -317,13 +317,13 @@ void AddSolveCommand(CLI::App& app, int* exit_code) {
       if (status == SolverStatus::kNotConverged) {
         std::cerr << "wrc solve: " << j["message"].get<std::string>() << '\n';
       }
-    } catch (const std::exception& e) {
-      // Bad input of any kind: a message naming the problem, status "error", exit 2.
-      std::cerr << "wrc solve: error: " << e.what() << '\n';
+    } catch (...) {
+      // A message naming the problem, status "error", the exit code of its class.
+      *exit_code = ReportFailure("wrc solve");
       if (*as_json) {
-        std::cout << json{{"status", "error"}, {"message", e.what()}}.dump(1) << '\n';
+        const std::string message = FailureOf(std::current_exception()).message;
+        std::cout << json{{"status", "error"}, {"message", message}}.dump(1) << '\n';
       }
-      *exit_code = kExitBadInput;
     }
   });
 }

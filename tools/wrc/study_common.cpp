@@ -133,7 +133,10 @@ SolveSummary SolveAndSummarize(const Case& c, const WheelRailOptions& options) {
     s.z = s.result.z;
     s.lv = s.fz != 0.0 ? s.fy / s.fz : NAN;
     SummarizePatches(c, &s);
-  } catch (const std::exception& e) {
+  } catch (const InputError& e) {  // the case does not solve; a bug propagates
+    s.status = "error";
+    s.message = e.what();
+  } catch (const NumericalError& e) {
     s.status = "error";
     s.message = e.what();
   }

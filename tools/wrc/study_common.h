@@ -35,7 +35,8 @@ void ApplyPaperMethod(const PaperMethod& m, Method* method);
 /// The `[method]` section of a case file for `m`.
 std::string MethodSection(const PaperMethod& m, double combine_distance);
 
-/// Calls job(k) for k = 0 … n−1 on `threads` threads (jobs must not throw).
+/// Calls job(k) for k = 0 … n−1 on `threads` threads. An exception a job lets out ends its
+/// thread's share of the jobs and is rethrown once every thread has finished.
 void RunParallel(std::size_t n, int threads, const std::function<void(std::size_t)>& job);
 
 /// Writes `script` as dir/name.gp and runs gnuplot on it in `dir`; says so on stderr (with

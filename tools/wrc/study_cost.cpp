@@ -565,9 +565,8 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
     try {
       if (sizes->size() < 2) throw InputError("--sizes: give at least two element sizes");
       *exit_code = StudySolver(*cases, *sizes, *solver_out);
-    } catch (const std::exception& e) {
-      std::cerr << "wrc study solver: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc study solver");
     }
   });
   auto* tables = study.add_subcommand(
@@ -603,12 +602,8 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
   tables->callback([=]() {
     try {
       *exit_code = StudyTables(*options);
-    } catch (const Interrupted& e) {
-      std::cerr << "wrc study tables: " << e.what() << '\n';
-      *exit_code = kExitInterrupted;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc study tables: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc study tables");
     }
   });
 }

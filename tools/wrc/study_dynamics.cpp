@@ -1058,9 +1058,8 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
   cmd->callback([options, exit_code]() {
     try {
       *exit_code = RunDynamicsStudy(*options);
-    } catch (const std::exception& e) {
-      std::cerr << "wrc study dynamics: error: " << e.what() << "\n";
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc study dynamics");
     }
   });
 }

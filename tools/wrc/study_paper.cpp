@@ -608,9 +608,8 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
       CheckRange(o->z_range, "--z-range");
       CheckRange(o->omega_range, "--omega-range");
       *exit_code = RunPaperStudy(*o);
-    } catch (const std::exception& e) {
-      std::cerr << kWho << ": error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure(kWho);
     }
   });
 }

@@ -595,9 +595,8 @@ void AddPlanarStudy(CLI::App& study, int* exit_code) {
   planar->callback([=]() {
     try {
       *exit_code = RunPlanarStudy(*o);
-    } catch (const std::exception& e) {
-      std::cerr << kWho << ": error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure(kWho);
     }
   });
 }

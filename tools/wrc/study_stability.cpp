@@ -162,7 +162,10 @@ Sample SolveOne(const CaseMaker& make_case, double parameter) {
       s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
       s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
     }
-  } catch (const std::exception& e) {
+  } catch (const InputError& e) {  // the case does not solve; a bug propagates
+    s.status = "error";
+    s.message = e.what();
+  } catch (const NumericalError& e) {
     s.status = "error";
     s.message = e.what();
   }
@@ -558,9 +561,8 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
         throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
       }
       *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
-    } catch (const std::exception& e) {
-      std::cerr << "wrc study stability: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc study stability");
     }
   });
 }

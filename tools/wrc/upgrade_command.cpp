@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -27,7 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // In the child: every member and root attribute of `old` into `copy`, sealed and read back.
-// The child's failure message goes to `report` (a pipe): exceptions cannot cross the fork.
+// The child's failure message goes to `report` (a pipe) and its class to the exit code
+// (FailureOf): exceptions cannot cross the fork.
 [[noreturn]] void CopyInChild(const std::string& old, const std::string& copy, int report) {
   int code = 0;
   try {
@@ -43,9 +45,10 @@ namespace fs = std::filesystem;
     // it can parse faithfully, and the copy may crash HDF5 where the original did.
     const Table checked(copy);
     (void)ReadTableInfo(copy);
-  } catch (const std::exception& e) {
-    const std::string text = e.what();
-    code = ::write(report, text.data(), text.size()) < 0 ? 2 : 1;
+  } catch (...) {
+    const Failure failure = FailureOf(std::current_exception());
+    const std::string& text = failure.message;
+    code = ::write(report, text.data(), text.size()) < 0 ? kExitBadInput : failure.exit_code;
   }
   _exit(code);  // _exit: neither the parent's buffered output nor its atexit handlers run twice
 }
@@ -89,6 +92,7 @@ void CopyContained(const std::string& old, const std::string& copy) {
     throw InputError(old + ": damaged: reading it crashed the HDF5 library (signal " +
                      std::to_string(WTERMSIG(status)) + "); it cannot be upgraded, regenerate it");
   }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kExitBug) throw std::logic_error(message);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw InputError(message.empty() ? old + ": cannot be copied" : message);
   }
@@ -127,9 +131,8 @@ void AddUpgradeCommand(CLI::App& app, int* exit_code) {
       std::cout << "wrc upgrade: wrote " << *output << " (sealed)\n";
       FinishStandardOutput();
       *exit_code = kExitOk;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc upgrade: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc upgrade");
     }
   });
 }

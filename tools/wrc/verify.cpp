@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <new>
 #include <random>
@@ -367,9 +368,10 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
       } catch (const std::bad_alloc&) {
         out_of_memory.store(true);
         break;
-      } catch (const std::exception& e) {
+      } catch (...) {
         (*status)[k] = 3;
-        (*messages)[k] = e.what();
+        // As a table stores it; a bug propagates and ends the command (after Join).
+        (*messages)[k] = PointFailureMessage(std::current_exception());
       }
       (*seconds)[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       ++solved;
@@ -379,10 +381,10 @@ void SolveExactly(const Scene& scene, const std::vector<std::vector<double>>& po
   gen::WorkerThreads pool(n, worker, "wrc verify");
   pool.Join();
   if (out_of_memory.load()) {
-    throw std::runtime_error("out of memory after " + std::to_string(solved) + " of " +
-                             std::to_string(points.size()) +
-                             " exact solves; no report or file written: run with fewer "
-                             "--threads or more memory");
+    throw ResourceError("out of memory after " + std::to_string(solved) + " of " +
+                        std::to_string(points.size()) +
+                        " exact solves; no report or file written: run with fewer "
+                        "--threads or more memory");
   }
   if (gen::InterruptRequested()) {
     throw Interrupted("interrupted after " + std::to_string(solved) + " of " +

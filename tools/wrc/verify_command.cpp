@@ -409,12 +409,8 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
   cmd->callback([=]() {
     try {
       *exit_code = RunVerify(*opt);
-    } catch (const Interrupted& e) {
-      std::cerr << "wrc verify: " << e.what() << '\n';
-      *exit_code = kExitInterrupted;
-    } catch (const std::exception& e) {
-      std::cerr << "wrc verify: error: " << e.what() << '\n';
-      *exit_code = kExitBadInput;
+    } catch (...) {
+      *exit_code = ReportFailure("wrc verify");
     }
   });
 }

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "wrc/core/errors.h"
+
 namespace wrc::cli {
 
 ZipWriter::ZipWriter(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp") {
@@ -18,7 +20,7 @@ ZipWriter::ZipWriter(std::string path) : path_(std::move(path)), temporary_(path
     zip_error_init_with_code(&e, error);
     const std::string message = zip_error_strerror(&e);
     zip_error_fini(&e);
-    throw std::runtime_error("cannot create " + temporary_ + ": " + message);
+    throw InputError(temporary_ + ": cannot create: " + message);
   }
 }
 
@@ -29,7 +31,7 @@ ZipWriter::~ZipWriter() {
 }
 
 void ZipWriter::Fail(const std::string& what) {
-  throw std::runtime_error(what + " in " + temporary_ + ": " + zip_strerror(archive_));
+  throw InputError(temporary_ + ": " + what + ": " + zip_strerror(archive_));
 }
 
 void ZipWriter::Add(const std::string& name, std::string bytes, unsigned mode) {

@@ -13,7 +13,7 @@ namespace wrc::cli {
 
 class ZipWriter {
  public:
-  /// Throws std::runtime_error naming the file when it cannot be created.
+  /// Throws InputError naming the file when it cannot be created.
   explicit ZipWriter(std::string path);
   ~ZipWriter();  ///< Discards the archive if Close() did not run.
   ZipWriter(const ZipWriter&) = delete;
@@ -21,7 +21,7 @@ class ZipWriter {
 
   /// Adds a file (deflated) with Unix permissions mode; the bytes are copied.
   void Add(const std::string& name, std::string bytes, unsigned mode = 0644);
-  /// Writes the archive and moves it to its path. Throws std::runtime_error on failure.
+  /// Writes the archive and moves it to its path. Throws InputError naming the file on failure.
   void Close();
 
  private:

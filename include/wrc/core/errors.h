@@ -9,9 +9,31 @@
 
 namespace wrc {
 
-/// Bad user input: a case or scene file that cannot be parsed, or a value outside its allowed
-/// range. The message is meant for the user as is; tools print it and exit with code 2.
+// The exceptions that cross a library boundary (docs/design.md, Error policy). A numerical
+// outcome the caller can act on is a status in the result, not an exception; a broken invariant
+// is a std::logic_error, a bug in wrc.
+
+/// Bad user input: a case or scene file that cannot be parsed, a value outside its allowed
+/// range, and a file of the user's that cannot be read or written or is damaged (a journal, a
+/// table, an output). The message is meant for the user as is and names the file; tools print
+/// it and exit with code 2.
 class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The machine refused what a run needs (memory, a worker thread). No property of the input
+/// file, but the user's to fix (fewer threads, more memory), so it counts as bad input (exit 2);
+/// the message says what was kept. The table generator stops on it rather than store a point.
+class ResourceError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+/// A numerical routine failed where no status can carry the outcome (a GSL routine, a
+/// factorisation): the input was valid, the computation did not succeed. Tools exit with
+/// code 3; the table generator stores the point as failed.
+class NumericalError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

@@ -19,6 +19,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -73,8 +74,16 @@ struct PointResult {
 std::vector<double> SceneOutputValues(const Scene& scene, const WheelRailResult& result,
                                       PointStatus status);
 
+/// The message a failed point (kError) stores for the exception that ended its solve, when the
+/// exception is a property of the point: InputError (the pose or the case) or NumericalError.
+/// Anything else is rethrown and stops the run instead of becoming a table entry: a
+/// std::logic_error or any other exception (a bug in wrc) unchanged, std::bad_alloc as a
+/// ResourceError saying that the points solved so far are kept.
+std::string PointFailureMessage(std::exception_ptr error);
+
 /// Solves the grid point at `indices` (one per axis) exactly as `wrc generate` does: z_guess
-/// warm-starts a prescribed-fz solve (NaN: cold start), exceptions become kError. `cache`
+/// warm-starts a prescribed-fz solve (NaN: cold start); an exception becomes kError or
+/// propagates as PointFailureMessage() decides. `cache`
 /// (may be null): the calling thread's work kept between points (WheelRailCache).
 PointResult SolveScenePoint(const Scene& scene, const std::vector<std::size_t>& indices,
                             double z_guess = std::numeric_limits<double>::quiet_NaN(),
@@ -173,9 +182,10 @@ class GenerateAborted : public InputError {
 
 /// Generates the table of `scene` (loaded with LoadScene, so profile paths are resolved).
 /// Throws InputError for problems the user must fix (an existing journal without resume, a
-/// journal of another scene, unreadable profiles, an unwritable output) and std::runtime_error
-/// (h5::Error) when writing the table fails. Failing points do not throw: they are recorded
-/// with their status and message.
+/// damaged journal or a journal of another scene, unreadable profiles, an unwritable output),
+/// ResourceError when memory or threads run out, and h5::Error (runtime/hdf5) when writing the
+/// table fails. Failing points do not throw: they are recorded with their status and message;
+/// an exception that is no property of a point propagates (PointFailureMessage).
 GenerateSummary GenerateTable(const Scene& scene, const GenerateOptions& options);
 
 /// What `wrc generate --estimate` measures before a run: short runs of the scene's grid solved

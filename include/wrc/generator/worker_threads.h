@@ -22,7 +22,8 @@ namespace wrc::gen {
 /// process); the first one is rethrown by Join().
 class WorkerThreads {
  public:
-  /// Throws std::runtime_error naming `who` and the system's reason when not one thread starts.
+  /// Throws ResourceError (wrc/core/errors.h) naming `who` and the system's reason when not one
+  /// thread starts.
   WorkerThreads(int count, const std::function<void()>& body, const std::string& who);
   ~WorkerThreads() { JoinAll(); }
   WorkerThreads(const WorkerThreads&) = delete;
