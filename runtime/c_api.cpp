@@ -253,6 +253,23 @@ const char* wrc_table_attribute(const wrc_table* t, const char* name) {
   return found->second.c_str();
 }
 
+int wrc_table_number_attribute(const wrc_table* t, const char* name, double* value) {
+  if (!CheckTable(t, "wrc_table_number_attribute")) return WRC_ERR_NULL_POINTER;
+  if (name == nullptr || value == nullptr) {
+    SetLastError("wrc_table_number_attribute: %s is NULL", name == nullptr ? "name" : "value");
+    return WRC_ERR_NULL_POINTER;
+  }
+  const auto& numbers = t->table.numbers();
+  const auto found = numbers.find(name);
+  if (found == numbers.end()) {
+    SetLastError("wrc_table_number_attribute: %s: no number attribute '%s' on /",
+                 t->table.path().c_str(), name);
+    return WRC_ERR_NOT_FOUND;
+  }
+  *value = found->second;
+  return WRC_OK;
+}
+
 const char* wrc_table_warning(const wrc_table* t) {
   if (!CheckTable(t, "wrc_table_warning")) return nullptr;
   const std::string& warning = t->table.warning();

@@ -80,6 +80,8 @@ class Table {
   const std::string& warning() const { return warning_; }
   /// Root string attributes (format, wrc_version, scene, ...).
   const std::map<std::string, std::string, std::less<>>& attributes() const { return attributes_; }
+  /// Root float64 attributes (the fixed state of table_schema.h).
+  const std::map<std::string, double, std::less<>>& numbers() const { return numbers_; }
 
   std::size_t num_nodes() const { return num_nodes_; }
   /// The grid data as loaded: per node (row-major over the axes), one value per output.
@@ -157,6 +159,7 @@ class Table {
   std::vector<Axis> axes_;
   std::vector<Output> outputs_;
   std::map<std::string, std::string, std::less<>> attributes_;
+  std::map<std::string, double, std::less<>> numbers_;
   std::string warning_;  // less<>: lookup by const char*
 
   std::vector<int> active_axes_;          ///< Axes with more than one node, ascending.

@@ -116,6 +116,7 @@ Table Table::FromContent(format::TableContent content) {
   table.path_ = std::move(content.path);
   table.warning_ = std::move(content.warning);
   table.attributes_ = std::move(content.attributes);
+  table.numbers_ = std::move(content.numbers);
   for (format::AxisContent& axis : content.axes)
     table.axes_.push_back(IndexedAxis(std::move(axis)));
   for (format::OutputContent& output : content.outputs) {

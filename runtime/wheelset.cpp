@@ -10,6 +10,7 @@
 #include <string_view>
 #include <utility>
 
+#include "runtime/hdf5/table_schema.h"
 #include "runtime/scene_values.h"
 #include "runtime/table.h"
 #include "wrc/quantities.h"
@@ -81,9 +82,41 @@ struct wrc_wheelset {
 
 namespace {
 
-// The fixed values of a scene's [state]: absent keys are 0 except z/fz (one of them is given)
-// and omega/spin (omega follows from spin, free rolling by default).
-void ReadFixedState(const std::string& scene, Wheel& w) {
+enum class TypedState { kAbsent, kRead, kIncomplete };
+
+// The fixed state from the table's typed attributes (runtime/hdf5/table_schema.h); absent in a
+// table written before them. `left`: the table was made for a left wheel.
+TypedState ReadTypedState(const wrc_table* table, Wheel& w, bool* left) {
+  namespace schema = wrc::schema;
+  if (wrc_table_number_attribute(table, schema::kWheelsetVelocity, &w.velocity) != WRC_OK) {
+    return TypedState::kAbsent;
+  }
+  bool complete =
+      wrc_table_number_attribute(table, schema::kWheelsetNominalRadius, &w.nominal_radius) ==
+          WRC_OK &&
+      wrc_table_number_attribute(table, schema::kWheelProfileOffset, &w.lever) == WRC_OK;
+  for (int q = 0; q < kQuantities; ++q) {
+    const std::string name = schema::kFixedPrefix + std::string(wrc::kStateQuantities[q].name);
+    complete = complete && wrc_table_number_attribute(table, name.c_str(), &w.fixed[q]) == WRC_OK;
+  }
+  const char* side = wrc_table_attribute(table, schema::kWheelsetSide);
+  if (!complete || side == nullptr) return TypedState::kIncomplete;  // wrc_last_error says what
+  *left = std::strcmp(side, "left") == 0;
+  return TypedState::kRead;
+}
+
+// Tables written before the typed attributes: the same values from the stored scene text,
+// with the solver's defaults (include/wrc/core/case.h) where the scene leaves them out. Absent
+// [state] keys are 0 except z/fz (one of them is given) and omega/spin (omega follows from
+// spin, free rolling by default).
+void ReadSceneState(const wrc_table* table, Wheel& w, bool* left) {
+  const char* scene_attribute = wrc_table_attribute(table, wrc::schema::kScene);
+  const std::string scene = scene_attribute != nullptr ? scene_attribute : "";
+  w.velocity = SceneNumber(scene, "state", "velocity").value_or(NAN);
+  w.nominal_radius = SceneNumber(scene, "wheelset", "nominal_radius").value_or(460.0);
+  w.lever = 0.5 * SceneNumber(scene, "wheelset", "flange_back_distance").value_or(1360.0) -
+            SceneNumber(scene, "wheelset", "flange_back_position").value_or(-70.0);
+  *left = SceneString(scene, "wheelset", "side").value_or("right") == "left";
   for (int q = 0; q < kQuantities; ++q) {
     w.fixed[q] = SceneNumber(scene, "state", wrc::kStateQuantities[q].name).value_or(0.0);
   }
@@ -101,22 +134,20 @@ int QuantityOf(const char* axis_name) { return wrc::StateQuantityIndex(axis_name
 
 // Reads what the wheel needs from its table; `side` is the wheel's side.
 int SetUpWheel(const wrc_table* table, int side, Wheel& w) {
-  const char* scene_attribute = wrc_table_attribute(table, "scene");
-  const std::string scene = scene_attribute != nullptr ? scene_attribute : "";
-  const auto velocity = SceneNumber(scene, "state", "velocity");
-  if (!velocity || !(*velocity > 0.0)) {
-    SetLastError("wrc_wheelset_create: the table's scene gives no positive state.velocity");
+  bool left = false;
+  const TypedState typed = ReadTypedState(table, w, &left);
+  if (typed == TypedState::kIncomplete) {
+    SetLastError("wrc_wheelset_create: the table's fixed state is incomplete: %s",
+                 std::string(wrc_last_error()).c_str());
+    return WRC_ERR_FORMAT;
+  }
+  if (typed == TypedState::kAbsent) ReadSceneState(table, w, &left);
+  if (!(w.velocity > 0.0) || !(w.nominal_radius > 0.0)) {
+    SetLastError("wrc_wheelset_create: the table gives no positive velocity and nominal radius");
     return WRC_ERR_FORMAT;
   }
   w.table = table;
-  w.velocity = *velocity;
-  w.nominal_radius = SceneNumber(scene, "wheelset", "nominal_radius").value_or(460.0);
-  // The solver's defaults (include/wrc/core/case.h) where the scene leaves them out.
-  w.lever = 0.5 * SceneNumber(scene, "wheelset", "flange_back_distance").value_or(1360.0) -
-            SceneNumber(scene, "wheelset", "flange_back_position").value_or(-70.0);
-  const std::string table_side = SceneString(scene, "wheelset", "side").value_or("right");
-  w.mirror = (table_side == "left") == (side == WRC_LEFT) ? 1.0 : -1.0;
-  ReadFixedState(scene, w);
+  w.mirror = left == (side == WRC_LEFT) ? 1.0 : -1.0;
   bool has_axis[kQuantities] = {};
   for (int a = 0; a < wrc_table_num_axes(table); ++a) {
     const int q = QuantityOf(wrc_table_axis_name(table, a));

@@ -720,6 +720,46 @@ bool AxisStepIsResolvable(double a, double b) {
          step >= WRC_AXIS_MIN_RELATIVE_STEP * std::max(std::abs(a), std::abs(b));
 }
 
+namespace {
+
+// The case's value of a state quantity (wrc/quantities.h), NaN where the case leaves it open.
+double CaseStateValue(const Case& c, std::string_view name) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const WheelsetState& s = c.state;
+  if (name == "y") return s.y;
+  if (name == "z") return s.z.value_or(kNaN);
+  if (name == "fz") return s.fz.value_or(kNaN);
+  if (name == "roll") return s.roll;
+  if (name == "yaw") return s.yaw;
+  if (name == "spin")
+    return s.spin ? *s.spin : -s.omega * c.wheelset.nominal_radius / s.velocity - 1.0;
+  if (name == "omega") return s.omega;
+  if (name == "vy") return s.vy;
+  if (name == "vroll") return s.vroll;
+  if (name == "vyaw") return s.vyaw;
+  if (name == "mu") return c.friction.is_constant() ? c.friction.mu.front() : kNaN;
+  if (name == "y_wheel") return kNaN;  // follows from y and roll, never fixed on its own
+  throw std::logic_error("FixedStateValue: '" + std::string(name) + "' is not a state quantity");
+}
+
+}  // namespace
+
+double FixedStateValue(const Scene& scene, std::string_view name) {
+  const double value = CaseStateValue(scene.base, name);
+  // spin and omega are one quantity in two forms; y follows from y_wheel and roll.
+  auto varied_by = [](std::string_view axis, std::string_view quantity) {
+    if (axis == quantity) return true;
+    if ((axis == "spin" || axis == "omega") && (quantity == "spin" || quantity == "omega")) {
+      return true;
+    }
+    return axis == "y_wheel" && quantity == "y";
+  };
+  for (const SceneAxis& axis : scene.axes) {
+    if (varied_by(axis.name, name)) return std::numeric_limits<double>::quiet_NaN();
+  }
+  return value;
+}
+
 Case CaseAtPoint(const Scene& scene, const std::vector<double>& axis_values) {
   if (axis_values.size() != scene.axes.size()) {
     throw std::invalid_argument("CaseAtPoint: " + std::to_string(axis_values.size()) +

@@ -209,6 +209,12 @@ WRC_API const signed char* wrc_table_node_status(const wrc_table* t);
  *  NULL when there is none of that name (wrc_last_error() then says so). */
 WRC_API const char* wrc_table_attribute(const wrc_table* t, const char* name);
 
+/** A float64 attribute of the file's root group (the fixed state a table was made at:
+ *  wheelset_velocity, wheelset_nominal_radius, fixed_y, …; docs/reference/table-layout.md) into
+ *  *value. WRC_OK, or WRC_ERR_NOT_FOUND when there is none of that name (tables written before
+ *  these attributes hold the same values in their scene text only), WRC_ERR_NULL_POINTER. */
+WRC_API int wrc_table_number_attribute(const wrc_table* t, const char* name, double* value);
+
 /** Why the table should be replaced although it loaded, or NULL: a table written before tables
  *  were sealed (a SHA-256 of its bytes checked before HDF5 reads them) loads, but damage to it
  *  is found only as HDF5 reads it; `wrc upgrade OLD.h5 -o NEW.h5` seals it. */

@@ -89,6 +89,13 @@ class Table {
   std::string attribute(const std::string& name) const {
     return CheckedString(wrc_table_attribute(handle_, name.c_str()), WRC_ERR_NOT_FOUND);
   }
+  /// A float64 attribute of the root group (the fixed state: wheelset_velocity, fixed_y, ...);
+  /// throws when absent.
+  double number_attribute(const std::string& name) const {
+    double value = 0.0;
+    Checked(wrc_table_number_attribute(handle_, name.c_str(), &value));
+    return value;
+  }
 
   /// Not to be called while other threads evaluate this table (see wrc_table_set_interpolation).
   void set_interpolation(Interpolation mode) {

@@ -110,16 +110,17 @@ class Cursor {
 };
 
 // The fixed header: magic, version, flags, size, digest, reserved.
-void CheckHeader(std::string_view bytes, const std::string& where, bool check_digest) {
+std::uint32_t CheckHeader(std::string_view bytes, const std::string& where, bool check_digest) {
   if (bytes.size() < kFlatHeaderSize) {
     Invalid(where, "a flat table starts with a " + std::to_string(kFlatHeaderSize) +
                        "-byte header, the file has " + std::to_string(bytes.size()) + " bytes");
   }
   if (!IsFlatTable(bytes)) Invalid(where, "not a flat table (its first 8 bytes are not the magic)");
-  const std::uint64_t version = LoadUnsigned(bytes.data() + 8, 4);
-  if (version != kFlatVersion) {
+  const auto version = static_cast<std::uint32_t>(LoadUnsigned(bytes.data() + 8, 4));
+  if (version < kFlatEarliestVersion || version > kFlatVersion) {
     Invalid(where, "flat table version " + std::to_string(version) +
-                       ", this runtime reads version " + std::to_string(kFlatVersion));
+                       ", this runtime reads versions " + std::to_string(kFlatEarliestVersion) +
+                       " to " + std::to_string(kFlatVersion));
   }
   if (LoadUnsigned(bytes.data() + 12, 4) != 0)
     Invalid(where, "header flags set that no version defines");
@@ -137,6 +138,7 @@ void CheckHeader(std::string_view bytes, const std::string& where, bool check_di
   }
   if (LoadUnsigned(bytes.data() + kFlatDigestEnd, 8) != 0)
     Invalid(where, "reserved header bytes set");
+  return version;
 }
 
 void DecodeAttributes(Cursor& in, std::uint32_t count, TableContent& content,
@@ -147,6 +149,19 @@ void DecodeAttributes(Cursor& in, std::uint32_t count, TableContent& content,
     std::string value = in.String(in.remaining(), what + "'s value");
     if (key.empty()) Invalid(where, what + " has an empty key");
     if (!content.attributes.emplace(std::move(key), std::move(value)).second) {
+      Invalid(where, what + " repeats a key");
+    }
+  }
+}
+
+void DecodeNumbers(Cursor& in, std::uint32_t count, TableContent& content,
+                   const std::string& where) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::string what = "number " + std::to_string(i);
+    std::string key = in.String(kMaxNameBytes, what + "'s key");
+    const double value = le::LoadF64(in.Take(8, what + "'s value"));
+    if (key.empty()) Invalid(where, what + " has an empty key");
+    if (!content.numbers.emplace(std::move(key), value).second) {
       Invalid(where, what + " repeats a key");
     }
   }
@@ -214,10 +229,14 @@ std::string EncodeFlatTable(const TableContent& content) {
   PutU32(body, static_cast<std::uint32_t>(content.attributes.size()));
   PutU32(body, static_cast<std::uint32_t>(content.axes.size()));
   PutU32(body, static_cast<std::uint32_t>(content.outputs.size()));
-  PutU32(body, 0);
+  PutU32(body, static_cast<std::uint32_t>(content.numbers.size()));
   for (const auto& [key, value] : content.attributes) {
     PutString(body, key);
     PutString(body, value);
+  }
+  for (const auto& [key, value] : content.numbers) {
+    PutString(body, key);
+    PutF64(body, value);
   }
   for (const AxisContent& axis : content.axes) {
     PutString(body, axis.name);
@@ -248,14 +267,15 @@ std::string EncodeFlatTable(const TableContent& content) {
 
 TableContent DecodeFlatTable(std::string_view bytes, const std::string& path, bool check_digest) {
   const std::string where = path + ":";
-  CheckHeader(bytes, where, check_digest);
+  const std::uint32_t version = CheckHeader(bytes, where, check_digest);
   TableContent content;
   content.path = path;
   Cursor in(bytes, kFlatHeaderSize, where);
   const std::uint32_t attributes = in.U32("the attribute count");
   const std::uint32_t axes = in.U32("the axis count");
   const std::uint32_t outputs = in.U32("the output count");
-  in.Zero(in.U32("the reserved count"), "the reserved count");
+  const std::uint32_t numbers = in.U32("the number count");
+  if (version < 2) in.Zero(numbers, "the reserved count");
   if (axes == 0 || axes > static_cast<std::uint32_t>(WRC_MAX_AXES)) {
     Invalid(where + "/axes",
             std::to_string(axes) + " axes, a table has 1 to " + std::to_string(WRC_MAX_AXES));
@@ -263,6 +283,7 @@ TableContent DecodeFlatTable(std::string_view bytes, const std::string& path, bo
   // Each output takes at least 8 bytes (two string lengths): a count beyond that is damage.
   if (outputs > in.remaining() / 8) in.Truncated(std::uint64_t{outputs} * 8, "the outputs");
   DecodeAttributes(in, attributes, content, where);
+  DecodeNumbers(in, numbers, content, where);
   DecodeAxes(in, axes, content);
   for (std::uint32_t k = 0; k < outputs; ++k) {
     const std::string what = "output " + std::to_string(k);

@@ -5,18 +5,20 @@
 /// boxes, rapid-prototyping units) and for hosts that must not parse HDF5 metadata. `wrc export`
 /// writes it from an HDF5 table; a runtime built with or without HDF5 reads it.
 ///
-/// Layout, version 1 (docs/reference/table-layout.md, "The flat table"):
+/// Layout, version 2 (docs/reference/table-layout.md, "The flat table"); version 1, read too, is
+/// the same with no numbers (its fourth count 0):
 ///
 ///     offset  bytes
 ///          0      8  magic 89 57 52 43 54 0D 0A 1A ("\x89WRCT\r\n\x1a", as PNG's: a text-mode
 ///                    copy or a 7-bit channel damages it visibly)
-///          8      4  u32 version (1)
+///          8      4  u32 version (2)
 ///         12      4  u32 flags (0; none defined)
 ///         16      8  u64 size of the whole file in bytes
 ///         24     32  SHA-256 of every byte from offset 56 to the end
 ///         56      8  u64 reserved (0)
-///         64         u32 attributes, u32 axes, u32 outputs, u32 reserved (0)
+///         64         u32 attributes, u32 axes, u32 outputs, u32 numbers
 ///                    per attribute: string key, string value
+///                    per number: string key, f64 value
 ///                    per axis: string name, string unit, u64 nodes, f64 × nodes
 ///                    per output: string name, string unit
 ///                    zero bytes to the next multiple of 8 of the offset
@@ -37,7 +39,9 @@
 namespace wrc::format {
 
 inline constexpr std::array<char, 8> kFlatMagic = {'\x89', 'W', 'R', 'C', 'T', '\r', '\n', '\x1a'};
-inline constexpr std::uint32_t kFlatVersion = 1;
+inline constexpr std::uint32_t kFlatVersion = 2;
+/// The oldest version this build reads.
+inline constexpr std::uint32_t kFlatEarliestVersion = 1;
 /// Bytes before the body; the digest covers everything from kFlatDigestEnd on.
 inline constexpr std::size_t kFlatHeaderSize = 64;
 inline constexpr std::size_t kFlatDigestOffset = 24;

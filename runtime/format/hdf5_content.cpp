@@ -105,9 +105,11 @@ h5::File OpenChecked(const std::string& path) {
 void ReadRootAttributes(const h5::File& file, TableContent& content) {
   for (const std::string& name : file.AttributeNames()) {
     const h5::Attribute attribute = file.OpenAttribute(name);
-    if (attribute.Type().Class() == h5::TypeClass::kString &&
-        attribute.Space().NumElements() == 1) {
+    if (attribute.Space().NumElements() != 1) continue;
+    if (attribute.Type().Class() == h5::TypeClass::kString) {
       content.attributes[name] = attribute.ReadString();
+    } else if (attribute.Type().Class() == h5::TypeClass::kFloat) {
+      content.numbers[name] = attribute.ReadDouble();
     }
   }
 }

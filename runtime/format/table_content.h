@@ -48,6 +48,8 @@ struct TableContent {
   std::string warning;
   /// The root string attributes (format, wrc_version, scene, ...).
   std::map<std::string, std::string, std::less<>> attributes;
+  /// The root float64 attributes (the fixed state of table_schema.h; none in older tables).
+  std::map<std::string, double, std::less<>> numbers;
   /// In storage order: the nodes are row-major over the axes, the last varying fastest.
   std::vector<AxisContent> axes;
   std::vector<OutputContent> outputs;

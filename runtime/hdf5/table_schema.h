@@ -32,6 +32,21 @@ inline constexpr const char* kRefineEstimatedError = "refine_estimated_error";
 /// measurement (like /solve_time_s), so apart from the reproducible refinement record.
 inline constexpr const char* kRefineCpuSeconds = "refine_cpu_seconds";
 
+// Root float64 attributes: the fixed state a table was made at, which the runtime's wheelset
+// API needs (wrc_wheelset_create). Written by every table since they were introduced; tables
+// written before carry only the scene text, from which the runtime reads the same values.
+inline constexpr const char* kWheelsetVelocity = "wheelset_velocity";             ///< V, mm/s
+inline constexpr const char* kWheelsetNominalRadius = "wheelset_nominal_radius";  ///< r0, mm
+/// The lateral distance of the wheel profile's origin from the wheelset centre, mm
+/// (flange_back_distance / 2 − flange_back_position): the lever of the yaw rate's creepage.
+inline constexpr const char* kWheelProfileOffset = "wheel_profile_offset";
+/// Prefix of one attribute per state quantity of wrc/quantities.h (`fixed_y`, `fixed_fz`, …):
+/// its value in the table's scene, NaN where the table does not fix it (an axis, z with a
+/// prescribed fz, friction that varies with the contact angle).
+inline constexpr const char* kFixedPrefix = "fixed_";
+/// Root string attribute: "left" or "right", the wheel the table was made for.
+inline constexpr const char* kWheelsetSide = "wheelset_side";
+
 // Groups and datasets.
 inline constexpr const char* kAxes = "axes";               ///< group: one dataset per axis
 inline constexpr const char* kOutputs = "outputs";         ///< group: one dataset per output

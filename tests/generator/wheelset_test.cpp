@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "runtime/hdf5/hdf5.h"
+#include "runtime/hdf5/seal.h"
 #include "tests/generator/generator_test_util.h"
 #include "wrc/core/scene.h"
 #include "wrc/core/wheelrail.h"
@@ -215,6 +217,59 @@ TEST_F(WheelsetTest, FlagsSayWhereTheTableCannotServe) {
   state.velocity = kV0;
   state.yaw = NAN;
   EXPECT_EQ(wheelset.try_eval(state, ignored), WRC_ERR_NAN_INPUT);
+}
+
+// The fixed state is stored typed: the scene's own values, NaN for what the axes vary.
+TEST_F(WheelsetTest, TheFixedStateIsStoredTyped) {
+  EXPECT_EQ(table_->number_attribute("wheelset_velocity"), kV0);
+  EXPECT_EQ(table_->number_attribute("wheelset_nominal_radius"), kRadius);
+  EXPECT_EQ(table_->number_attribute("wheel_profile_offset"), 0.5 * 1360.0 + 70.0);  // defaults
+  EXPECT_EQ(table_->attribute("wheelset_side"), "right");
+  EXPECT_EQ(table_->number_attribute("fixed_fz"), 10000.0);
+  EXPECT_EQ(table_->number_attribute("fixed_roll"), 0.0);
+  EXPECT_EQ(table_->number_attribute("fixed_mu"), 0.3);  // the solver's default friction
+  for (const char* varied : {"fixed_y", "fixed_yaw", "fixed_vy", "fixed_spin", "fixed_omega",
+                             "fixed_z", "fixed_y_wheel"}) {
+    EXPECT_TRUE(std::isnan(table_->number_attribute(varied))) << varied;
+  }
+  for (const StateQuantity& q : kStateQuantities) {
+    EXPECT_NO_THROW(table_->number_attribute("fixed_" + std::string(q.name))) << q.name;
+  }
+}
+
+// A table written before the typed fixed state (the same table without those attributes) is
+// read from its scene text; both give the same contact, bit for bit, flags included.
+TEST_F(WheelsetTest, TablesWithoutTheTypedStateReadTheirScene) {
+  const std::filesystem::path legacy = *dir_ / "legacy.h5";
+  std::filesystem::copy_file(*dir_ / "right.h5", legacy,
+                             std::filesystem::copy_options::overwrite_existing);
+  {
+    const auto lock = h5::LibraryLock();
+    h5::File file = h5::File::Open(legacy.string(), h5::File::Mode::kReadWrite);
+    for (const std::string& name : file.AttributeNames()) {
+      if (name.rfind("fixed_", 0) == 0 || name.rfind("wheelset_", 0) == 0 ||
+          name == "wheel_profile_offset") {
+        file.RemoveAttribute(name);
+      }
+    }
+  }
+  h5::SealFile(legacy.string());
+  const Table old_table(legacy.string());
+  EXPECT_THROW(old_table.number_attribute("wheelset_velocity"), TableError);
+  const WheelsetTable typed(*table_), from_scene(old_table);
+  for (const std::vector<double>& at :
+       {std::vector<double>{0.7, 0.001, 50.0, 0.0013}, {-1.5, -0.0015, -150.0, 0.0}}) {
+    WheelsetTable::State state = StateAt(at, kV0);
+    for (const double vroll : {0.0, 0.01}) {  // 0.01: the table's fixed vroll is 0, flagged
+      state.vroll = vroll;
+      const wrc_wheelset_result a = typed.eval(state), b = from_scene.eval(state);
+      for (const int side : {WRC_LEFT, WRC_RIGHT}) {
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(a.wheel[side].force[i], b.wheel[side].force[i]);
+        EXPECT_EQ(a.wheel[side].contact_y, b.wheel[side].contact_y);
+        EXPECT_EQ(a.wheel[side].flags, b.wheel[side].flags);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -190,14 +190,21 @@ TEST(RuntimeFlat, MalformedBodiesAreRefusedByName) {
   EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(bytes + "x")).find("bytes follow the status"),
             std::string::npos);
   forged = bytes;
-  forged[8] = 2;  // version 2
+  forged[8] = 3;  // version 3
   EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged))
-                .find("version 2, this runtime reads version 1"),
+                .find("version 3, this runtime reads versions 1 to 2"),
             std::string::npos);
+  // Version 1, the same without numbers, still reads; its fourth count is reserved.
   forged = bytes;
-  forged[64 + 12] = 1;  // the reserved count
+  ASSERT_EQ(forged[64 + 12], 0);  // this table has no numbers
+  forged[8] = 1;
+  EXPECT_EQ(decode_error(wrc::test::ResealedFlatTable(forged)), "decoded");
+  forged[64 + 12] = 1;
   EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged)).find("must be 0"),
             std::string::npos);
+  forged = bytes;
+  forged[64 + 12] = 1;  // a number the body does not hold: the rest no longer parses
+  EXPECT_NE(decode_error(wrc::test::ResealedFlatTable(forged)), "decoded");
 
   // Content the checks refuse, whichever format holds it.
   wrc::format::TableContent content = ReadTableContent(files.h5.path());

@@ -112,6 +112,13 @@ std::vector<std::string> DefaultSceneOutputs(bool fz_prescribed);
 /// interpolate between them (the WRC_AXIS_* limits of wrc/runtime.h).
 bool AxisStepIsResolvable(double a, double b);
 
+/// The value a table of this scene fixes for the state quantity `name` (kStateQuantities of
+/// wrc/quantities.h): its value in the scene's case; NaN where the table does not fix it (an axis
+/// of the scene, y_wheel, z with a prescribed fz and fz with a prescribed z, friction that
+/// varies with the contact angle). Throws std::logic_error for a name that is not a state
+/// quantity. What the runtime's wheelset API reads (the table's fixed_* attributes).
+double FixedStateValue(const Scene& scene, std::string_view name);
+
 /// The case at one grid point: `axis_values` holds one value per axis, in axis order, and need
 /// not be grid nodes (e.g. random samples). A spin value is converted to omega with the case's
 /// velocity and nominal radius; a mu value makes friction constant. Throws
