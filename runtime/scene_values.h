@@ -3,8 +3,9 @@
 /// Reads single values from the scene text a table stores (its root attribute `scene`), for
 /// tables written before the fixed state was stored typed (the wheel*_ and fixed_* attributes
 /// of runtime/hdf5/table_schema.h): the wheelset API needs the fixed state (velocity, nominal
-/// radius, side, quantities that are not axes). A line reader for `[section]` headers and `key = number | "string"` lines, which is
-/// how scene files write these keys; it is not a TOML parser. Internal to wrc_runtime.
+/// radius, side, quantities that are not axes). A line reader for `[section]` headers and `key =
+/// number | "string"` lines, which is how scene files write these keys; it is not a TOML parser.
+/// Internal to wrc_runtime.
 
 #include <optional>
 #include <string>
