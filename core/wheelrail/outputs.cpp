@@ -49,6 +49,14 @@ double ContactLocation(const WheelRailResult& r, bool want_y) {
   return want_y ? main->reference_rail(0) : main->contact_angle;
 }
 
+// Where the patch carrying the largest normal force lies on the wheel: its rolling radius, or
+// its lateral position on the wheel profile (the wheel's side of the contact-point functions).
+double MainPatchOnWheel(const WheelRailResult& r, bool radius) {
+  const PatchResult* main = MainPatch(r);
+  if (main == nullptr) return kNaN;
+  return radius ? main->rolling_radius : main->reference_wheel(1);
+}
+
 // The output of a solve in contact. Every name of kOutputQuantities has its line here.
 double SolvedValue(std::string_view name, const WheelRailResult& r) {
   if (name == "fx") return r.force_T(0);
@@ -70,6 +78,8 @@ double SolvedValue(std::string_view name, const WheelRailResult& r) {
   if (name == "t_gamma_slip") return TGammaSlip(r);
   if (name == "fi_surf_rail") return WorstFatigueIndex(r, true);
   if (name == "fi_surf_wheel") return WorstFatigueIndex(r, false);
+  if (name == "rolling_radius") return MainPatchOnWheel(r, true);
+  if (name == "wheel_contact_y") return MainPatchOnWheel(r, false);
   throw std::logic_error("OutputValue: no value for the output '" + std::string(name) + "'");
 }
 

@@ -477,6 +477,7 @@ void FillReferenceOutputs(const PatchContext& ctx, const PatchReference& ref,
   const Eigen::Vector3d q = ctx.wheel->R_TW().transpose() * (p_T - ctx.wheel->p_TWo_T());
   const Eigen::Vector2d yz = ctx.wheel->ToWheelProfile(p_T);
   result.reference_wheel = {q(0), yz(0), yz(1)};
+  result.rolling_radius = ctx.wheel->nominal_radius() + yz(1);
 }
 
 void ClearFields(PatchResult& result) {

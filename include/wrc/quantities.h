@@ -82,6 +82,8 @@ inline constexpr OutputQuantity kOutputQuantities[] = {
     {"t_gamma_slip", "N", 1.0, false, DefaultOutput::kNo, AtNoContact::kZero},
     {"fi_surf_rail", "-", 1.0, false, DefaultOutput::kNo, AtNoContact::kUndefined},
     {"fi_surf_wheel", "-", 1.0, false, DefaultOutput::kNo, AtNoContact::kUndefined},
+    {"rolling_radius", "mm", 1.0, false, DefaultOutput::kNo, AtNoContact::kUndefined},
+    {"wheel_contact_y", "mm", -1.0, false, DefaultOutput::kNo, AtNoContact::kUndefined},
 };
 
 /// The state quantity of that name, or nullptr.

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wrc/core/case.h"
+#include "wrc/core/profile_placement.h"
 #include "wrc/core/wheelrail.h"
 #include "wrc/quantities.h"
 
@@ -84,6 +86,29 @@ TEST(Outputs, LocationFallsBackToTheMainPatch) {
   r.patches[1].contact_angle = 0.5;
   EXPECT_EQ(OutputValue("contact_y", r), 12.0);
   EXPECT_EQ(OutputValue("contact_angle", r), 0.5);
+}
+
+// The wheel's side of the contact geometry as a table stores it (rolling_radius,
+// wheel_contact_y) against the rigid contact of the undeformed profiles (RigidContactAt, an
+// independent search along the rail). At 500 N on the Manchester pair's tread the patch is a few
+// millimetres wide and nearly symmetric about the first touch: its reference lies within
+// 0.1 mm of it laterally (measured 0.007–0.02 mm), and its radius within 0.01 mm (measured
+// 3–4 µm, the elastic approach's share).
+TEST(Outputs, WheelContactAgreesWithTheRigidGeometry) {
+  Case c = LoadCase(std::string(WRC_TEST_DATA_DIR) +
+                    "/reference/cases/mbench_curved/mbench_curved_y4.toml");
+  c.state.fz = 500.0;
+  c.grid.dx = c.grid.ds = 0.5;  // the reference point, not the field, is compared
+  for (const double y : {-2.0, 0.0, 2.0, 4.0}) {
+    c.state.y = y;
+    const WheelRailResult r = SolveWheelRail(c);
+    ASSERT_EQ(r.status, SolverStatus::kConverged) << y;
+    ASSERT_EQ(r.patches.size(), 1u) << y;
+    const RigidContact rigid = RigidContactAt(c, {y, 0.0, 0.0, 0.0}, 0.01);
+    ASSERT_TRUE(rigid.found) << y;
+    EXPECT_NEAR(OutputValue("rolling_radius", r), rigid.rolling_radius, 0.01) << y;
+    EXPECT_NEAR(OutputValue("wheel_contact_y", r), rigid.wheel_y, 0.1) << y;
+  }
 }
 
 }  // namespace
