@@ -10,6 +10,12 @@
 
 namespace wrc::cli {
 
+/// Parses the command line and runs the chosen command (whose callback sets `exit_code`), then
+/// flushes standard output: a command line CLI11 refuses, or an unknown subcommand, is bad input
+/// (CLI11 prints its own message); a failed flush goes through ReportFailure. Returns the
+/// process's exit code.
+int RunCommandLine(CLI::App& app, int argc, char** argv, const int& exit_code);
+
 /// Option checks that say in words what a value must be: CLI11's PositiveNumber and
 /// NonNegativeNumber state their range as "0.000000 to 1797693...(309 digits).000000".
 /// The message reads "--samples: must be greater than 0, is 0".

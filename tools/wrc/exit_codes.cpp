@@ -1,11 +1,15 @@
 #include "tools/wrc/exit_codes.h"
 
+#include <CLI/CLI.hpp>
+
 #include <filesystem>
 #include <iostream>
 #include <new>
 
 #include "runtime/hdf5/hdf5.h"
+#include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
+#include "wrc/core/output_file.h"
 #include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
 
@@ -58,6 +62,27 @@ int ReportFailure(const std::string& command, std::exception_ptr error) {
   const Failure failure = FailureOf(error);
   if (!failure.line.empty()) std::cerr << command << ": " << failure.line << '\n';
   return failure.exit_code;
+}
+
+int RunCommandLine(CLI::App& app, int argc, char** argv, const int& exit_code) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (app.get_subcommands().empty() && !app.remaining().empty()) {
+      std::cerr << "wrc: unknown subcommand '" << app.remaining().front()
+                << "'; run 'wrc --help' for the list\n";
+      return kExitBadInput;
+    }
+    // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  try {
+    FinishStandardOutput();
+  } catch (...) {
+    return ReportFailure("wrc");
+  }
+  return exit_code;
 }
 
 }  // namespace wrc::cli

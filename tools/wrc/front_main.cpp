@@ -20,7 +20,6 @@
 #include <system_error>
 
 #include "tools/wrc/commands.h"
-#include "wrc/core/output_file.h"
 
 namespace {
 
@@ -64,19 +63,7 @@ int RunSolve(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = wrc::cli::kExitOk;
   wrc::cli::AddSolveCommand(app, &exit_code);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
-    const int code = app.exit(e);
-    return code == 0 ? 0 : wrc::cli::kExitBadInput;
-  }
-  try {
-    wrc::FinishStandardOutput();
-  } catch (...) {
-    return wrc::cli::ReportFailure("wrc");
-  }
-  return exit_code;
+  return wrc::cli::RunCommandLine(app, argc, argv, exit_code);
 }
 
 }  // namespace

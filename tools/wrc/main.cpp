@@ -2,11 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include <iostream>
-
 #include "runtime/hdf5/hdf5.h"
 #include "tools/wrc/commands.h"
-#include "wrc/core/output_file.h"
 
 int main(int argc, char** argv) {
   wrc::h5::SkipLibraryTermination();  // every file is closed explicitly (hdf5.h)
@@ -24,22 +21,5 @@ int main(int argc, char** argv) {
   wrc::cli::AddVerifyCommand(app, &exit_code);
   wrc::cli::AddStudyCommand(app, &exit_code);
   wrc::cli::AddPlotCommand(app, &exit_code);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (app.get_subcommands().empty() && !app.remaining().empty()) {
-      std::cerr << "wrc: unknown subcommand '" << app.remaining().front()
-                << "'; run 'wrc --help' for the list\n";
-      return wrc::cli::kExitBadInput;
-    }
-    // CLI11 prints help/usage errors itself; bad command lines are bad input (exit 2).
-    const int code = app.exit(e);
-    return code == 0 ? 0 : wrc::cli::kExitBadInput;
-  }
-  try {
-    wrc::FinishStandardOutput();
-  } catch (...) {
-    return wrc::cli::ReportFailure("wrc");
-  }
-  return exit_code;
+  return wrc::cli::RunCommandLine(app, argc, argv, exit_code);
 }
