@@ -80,7 +80,7 @@ struct PatchResult {
   Eigen::Vector2d reference_rail = Eigen::Vector2d::Zero();   ///< (y_r, z_r).
   Eigen::Vector3d reference_wheel = Eigen::Vector3d::Zero();  ///< (x_w, y_w, z_w).
   double rolling_radius = 0.0;  ///< Wheel radius at the reference, mm (nominal + z_w).
-  double approach = 0.0;  ///< Largest interpenetration of the undeformed surfaces, mm.
+  double approach = 0.0;        ///< Largest interpenetration of the undeformed surfaces, mm.
   double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< Creepages at the reference (planar).
   /// Tγ from the local fields, −∫ p·s dA (tractions on the rail, its relative slip), N: the
   /// frictional work per unit rolling distance; TGamma() is the same from the creepages and
