@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "core/gsl/error.h"
+#include "core/gsl/fit.h"
 #include "core/gsl/integration.h"
 #include "core/gsl/roots.h"
 #include "wrc/core/errors.h"
@@ -26,6 +29,13 @@ void CheckTable(const RollingRadiusDifference& t) {
       throw InputError("rolling-radius difference: y is not strictly ascending at sample " +
                        std::to_string(i));
     }
+  }
+}
+
+void CheckAmplitude(double amplitude) {
+  if (!(amplitude > 0.0) || !std::isfinite(amplitude)) {
+    throw InputError("equivalent conicity: the amplitude must be > 0 and finite, not " +
+                     FormatNumber(amplitude));
   }
 }
 
@@ -134,10 +144,7 @@ double HalfPeriod(const Potential& v, const RollingRadiusDifference& t, double y
 
 EquivalentConicity EquivalentConicityAt(const RollingRadiusDifference& dr, double amplitude) {
   CheckTable(dr);
-  if (!(amplitude > 0.0) || !std::isfinite(amplitude)) {
-    throw InputError("equivalent conicity: the amplitude must be > 0, not " +
-                     std::to_string(amplitude));
-  }
+  CheckAmplitude(amplitude);
   EquivalentConicity c;
   c.amplitude = amplitude;
   c.tan_gamma_e = c.y_min = c.y_max = c.scaled_wavelength = NAN;
@@ -164,6 +171,25 @@ EquivalentConicity EquivalentConicityAt(const RollingRadiusDifference& dr, doubl
   }
   c.tan_gamma_e = 4.0 * kPi * kPi / (c.scaled_wavelength * c.scaled_wavelength);
   return c;
+}
+
+double EquivalentConicityByRegression(const RollingRadiusDifference& dr, double amplitude) {
+  CheckTable(dr);
+  CheckAmplitude(amplitude);
+  const Potential v(dr);
+  double y_min = 0.0;
+  if (!TurningPoints(v, dr, amplitude, &y_min)) return std::numeric_limits<double>::quiet_NaN();
+  // Samples on the range's edges belong to it, whatever the root finding left in the last bits.
+  const double margin = 1e-9 * amplitude, y_max = y_min + 2.0 * amplitude;
+  std::vector<double> y, r;
+  for (std::size_t i = 0; i < dr.y.size(); ++i) {
+    if (dr.y[i] >= y_min - margin && dr.y[i] <= y_max + margin) {
+      y.push_back(dr.y[i]);
+      r.push_back(dr.dr[i]);
+    }
+  }
+  if (y.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  return 0.5 * gsl::FitLine(y, r).slope;
 }
 
 }  // namespace wrc

@@ -108,34 +108,41 @@ void WriteGeometry(const fs::path& path, const std::vector<Row>& rows) {
   csv.Commit();
 }
 
-std::vector<EquivalentConicity> Conicity(const RollingRadiusDifference& dr, double y_max) {
-  std::vector<EquivalentConicity> curve;
+// One amplitude: EN 15302's integration (the reference method) and its linear regression.
+struct ConicityPoint {
+  EquivalentConicity integration;
+  double regression = NAN;
+};
+
+std::vector<ConicityPoint> Conicity(const RollingRadiusDifference& dr, double y_max) {
+  std::vector<ConicityPoint> curve;
   for (int i = 1; i * 0.1 <= y_max + 1e-9; ++i) {
     const auto c = EquivalentConicityAt(dr, 0.1 * i);
-    if (c.valid) curve.push_back(c);
+    if (c.valid) curve.push_back({c, EquivalentConicityByRegression(dr, 0.1 * i)});
   }
   return curve;
 }
 
-void WriteConicity(const fs::path& path, const std::vector<EquivalentConicity>& curve) {
+void WriteConicity(const fs::path& path, const std::vector<ConicityPoint>& curve) {
   OutputText csv(path);
-  csv << "amplitude_mm,tan_gamma_e,y_min_mm,y_max_mm\n";
+  csv << "amplitude_mm,tan_gamma_e,y_min_mm,y_max_mm,tan_gamma_e_regression\n";
   csv.precision(10);
-  for (const auto& c : curve) {
-    csv << c.amplitude << ',' << c.tan_gamma_e << ',' << c.y_min << ',' << c.y_max << '\n';
+  for (const auto& [c, regression] : curve) {
+    csv << c.amplitude << ',' << c.tan_gamma_e << ',' << c.y_min << ',' << c.y_max << ','
+        << regression << '\n';
   }
   csv.Commit();
 }
 
-// The classic panels: Δr(y), the contact angle difference, the contact points on the rail
-// against y, and the equivalent conicity against amplitude.
+// The classic panels: Δr(y), the contact angle difference, the contact points on the rail and
+// on the wheel against y, and the equivalent conicity against amplitude by both methods.
 void DrawGeometry(const fs::path& out) {
   const std::string script =
-      "set terminal pngcairo size 1200,900 font ',10'\n"
+      "set terminal pngcairo size 1200,1300 font ',10'\n"
       "set output 'geometry.png'\n"
       "set datafile separator ','\n"
       "set key autotitle columnhead\n"
-      "set multiplot layout 2,2\n"
+      "set multiplot layout 3,2\n"
       "set grid\n"
       "set xlabel 'y, mm'\nset ylabel 'Δr, mm'\nset title 'Rolling-radius difference'\n"
       "plot 'geometry.csv' using 1:2 with lines notitle\n"
@@ -146,9 +153,14 @@ void DrawGeometry(const fs::path& out) {
       "set key below\n"  // beside no data, whatever the pair
       "plot 'geometry.csv' using 1:7 with points pt 7 ps 0.3 title 'right', "
       "'' using 1:(-$8) with points pt 7 ps 0.3 title 'left (mirrored)'\n"
+      "set ylabel 'contact point on the wheel, mm (wheel profile)'\n"
+      "set title 'Contact points on the wheels'\n"
+      "plot 'geometry.csv' using 1:9 with points pt 7 ps 0.3 title 'right', "
+      "'' using 1:10 with points pt 7 ps 0.3 title 'left'\n"
       "set xlabel 'amplitude ŷ, mm'\nset ylabel 'tan γe'\n"
       "set title 'Equivalent conicity (EN 15302)'\n"
-      "plot 'conicity.csv' using 1:2 with lines notitle\n"
+      "plot 'conicity.csv' using 1:2 with lines title 'integration (reference method)', "
+      "'' using 1:5 with lines dashtype 2 title 'linear regression of Δr'\n"
       "unset multiplot\n";
   if (!RunGnuplot(out, "geometry.gp", script)) {
     std::cerr << "wrc geometry: gnuplot is not installed: geometry.png is not drawn (the CSV "
@@ -156,25 +168,32 @@ void DrawGeometry(const fs::path& out) {
   }
 }
 
-double AtAmplitude(const std::vector<EquivalentConicity>& curve, double amplitude) {
-  for (const auto& c : curve) {
-    if (std::fabs(c.amplitude - amplitude) < 1e-9) return c.tan_gamma_e;
+const ConicityPoint* AtAmplitude(const std::vector<ConicityPoint>& curve, double amplitude) {
+  for (const auto& point : curve) {
+    if (std::fabs(point.integration.amplitude - amplitude) < 1e-9) return &point;
   }
-  return NAN;
+  return nullptr;
 }
 
-nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<EquivalentConicity>& curve,
+nlohmann::json NumberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<ConicityPoint>& curve,
                        const std::string& roll) {
   nlohmann::json j;
-  const double at3 = AtAmplitude(curve, 3.0);
-  j["tan_gamma_e_3mm"] = std::isfinite(at3) ? nlohmann::json(at3) : nlohmann::json(nullptr);
+  const ConicityPoint* at3 = AtAmplitude(curve, 3.0);
+  j["tan_gamma_e_3mm"] = NumberOrNull(at3 ? at3->integration.tan_gamma_e : NAN);
+  j["tan_gamma_e_regression_3mm"] = NumberOrNull(at3 ? at3->regression : NAN);
   j["jumps_y_mm"] = nlohmann::json::array();
   for (const Row& r : rows) {
     if (r.jump) j["jumps_y_mm"].push_back(r.y);
   }
   j["conicity"] = nlohmann::json::array();
-  for (const auto& c : curve) {
-    j["conicity"].push_back({{"amplitude_mm", c.amplitude}, {"tan_gamma_e", c.tan_gamma_e}});
+  for (const auto& [c, regression] : curve) {
+    j["conicity"].push_back({{"amplitude_mm", c.amplitude},
+                             {"tan_gamma_e", c.tan_gamma_e},
+                             {"tan_gamma_e_regression", NumberOrNull(regression)}});
   }
   j["roll"] = roll == "solved" ? "solved" : "none (EN 15302)";
   return j;
@@ -201,7 +220,7 @@ void RunGeometry(const GeometryOptions& o) {
               << " shifts) a contact lies at the end of a profile: those rows describe the "
                  "profiles' edges, not a contact; a smaller --y-max stays within them\n";
   }
-  const std::vector<EquivalentConicity> curve = Conicity(DrOf(rows), o.y_max);
+  const std::vector<ConicityPoint> curve = Conicity(DrOf(rows), o.y_max);
   const nlohmann::json summary = Summary(rows, curve, o.roll);
   if (!o.out.empty()) {
     fs::create_directories(o.out);
@@ -213,10 +232,12 @@ void RunGeometry(const GeometryOptions& o) {
     std::cout << summary.dump(2) << '\n';
     return;
   }
-  const double at3 = AtAmplitude(curve, 3.0);
+  const ConicityPoint* at3 = AtAmplitude(curve, 3.0);
+  const auto text = [](double v) { return std::isfinite(v) ? std::to_string(v) : "n/a"; };
   std::cout << "wheelset roll: " << summary["roll"].get<std::string>() << '\n'
             << "equivalent conicity (EN 15302): tan γe(3 mm) = "
-            << (std::isfinite(at3) ? std::to_string(at3) : std::string("n/a")) << '\n'
+            << text(at3 ? at3->integration.tan_gamma_e : NAN)
+            << " (linear regression of Δr: " << text(at3 ? at3->regression : NAN) << ")\n"
             << "contact jumps at y = " << summary["jumps_y_mm"].dump() << " mm\n";
 }
 

@@ -38,4 +38,17 @@ struct EquivalentConicity {
 /// strictly ascending, holds fewer than two or non-finite samples, or a non-positive amplitude.
 EquivalentConicity EquivalentConicityAt(const RollingRadiusDifference& dr, double amplitude);
 
+/// The equivalent conicity at amplitude ŷ > 0 by the linear regression of the Δr function, the
+/// other method EN 15302 describes (informatively, its Annex C, beside the integration above):
+/// the least-squares straight line through the Δr samples over the range the wheelset's motion
+/// of that amplitude covers, whose slope is 2·tan γe (a cone of tan γ gives Δr = 2·y·tan γ).
+/// The range is the integration's, between its turning points: ±ŷ about 0 for a symmetric
+/// pair, shifted where unequal wheels move the wheelset's running centre (EquivalentConicity's
+/// y_min, y_max), so the two methods see the same Δr and differ only in how they weigh it:
+/// regression every y alike, the integration by how long the motion dwells there, longest near
+/// its turning points. They part where Δr bends or jumps within the range. NaN where the
+/// integration has no motion (the range leaves the table, Δr does not restore) or fewer than
+/// two samples lie in the range. Throws InputError as EquivalentConicityAt does.
+double EquivalentConicityByRegression(const RollingRadiusDifference& dr, double amplitude);
+
 }  // namespace wrc

@@ -84,6 +84,40 @@ TEST(EquivalentConicity, IsNoneWhereTheMotionLeavesTheTableOrIsNotRestored) {
   EXPECT_THROW(EquivalentConicityAt(cone, 0.0), wrc::InputError);
 }
 
+// The linear regression of Δr: half the least-squares slope over the motion's range. A cone is
+// its slope exactly, and an offset of Δr (a smaller left wheel, here moving the running centre
+// to y = −3.33 mm) leaves it alone.
+TEST(EquivalentConicityByRegression, OfAConeIsItsSlope) {
+  const auto table = Sampled([](double y) { return 0.3 * y + 1.0; }, 10.0, 0.1);
+  for (double amplitude : {0.5, 1.0, 3.0, 6.0}) {
+    EXPECT_NEAR(wrc::EquivalentConicityByRegression(table, amplitude), 0.15, 1e-12) << amplitude;
+  }
+}
+
+// For Δr = a·y³ sampled at y = k·h, k = −N … N (N·h = ŷ), the least-squares slope is
+// a·Σk⁴/Σk²·h² = a·(3ŷ² + 3ŷh − h²)/5 (the sums of powers in closed form; 3aŷ²/5 as h → 0), so
+// tan γe is half that. The integration gives about 1.2 times more for the same Δr (the Duffing
+// wavelength, OfACubicIsTheDuffingOscillators): regression weighs every y alike, the motion
+// dwells near its turning points, where a cubic is steepest.
+TEST(EquivalentConicityByRegression, OfACubicIsTheLeastSquaresSlope) {
+  constexpr double a = 0.01, h = 0.01;
+  const auto table = Sampled([](double y) { return a * y * y * y; }, 4.0, h);
+  for (double amplitude : {1.0, 2.0, 3.5}) {
+    const double expected = 0.1 * a * (3.0 * amplitude * amplitude + 3.0 * amplitude * h - h * h);
+    EXPECT_NEAR(wrc::EquivalentConicityByRegression(table, amplitude), expected, 1e-9 * expected)
+        << amplitude;
+    EXPECT_GT(EquivalentConicityAt(table, amplitude).tan_gamma_e, 1.15 * expected) << amplitude;
+  }
+}
+
+TEST(EquivalentConicityByRegression, NeedsTwoSamplesAndAPositiveAmplitude) {
+  const auto table = Sampled([](double y) { return 0.3 * y; }, 5.0, 1.0);
+  EXPECT_TRUE(std::isnan(wrc::EquivalentConicityByRegression(table, 0.5)));   // only y = 0
+  EXPECT_NEAR(wrc::EquivalentConicityByRegression(table, 1.0), 0.15, 1e-12);  // edges count
+  EXPECT_THROW(wrc::EquivalentConicityByRegression(table, 0.0), wrc::InputError);
+  EXPECT_THROW(wrc::EquivalentConicityByRegression(table, NAN), wrc::InputError);
+}
+
 // ---- EN 15302's benchmark ---------------------------------------------------------------------
 
 const std::string kTables = std::string(WRC_TEST_DATA_DIR) + "/en15302/tables/";
@@ -123,6 +157,10 @@ TEST_P(Benchmark, ConicityLiesInTheStandardsBand) {
     EXPECT_LE(c.tan_gamma_e, upper) << "E" << e << " at " << amplitude << " mm";
     EXPECT_NEAR(c.tan_gamma_e, reference, 0.001) << "E" << e << " at " << amplitude << " mm";
     worst = std::max(worst, std::fabs(c.tan_gamma_e - reference));
+    if (std::fabs(amplitude - 3.0) < 1e-9) {
+      std::cout << "E" << e << " at 3 mm: integration " << c.tan_gamma_e << ", regression "
+                << wrc::EquivalentConicityByRegression(dr, amplitude) << '\n';
+    }
   }
   std::cout << "E" << e << ": " << checked << " amplitudes, largest |tan γe − reference| " << worst
             << '\n';
