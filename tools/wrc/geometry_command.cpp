@@ -7,6 +7,7 @@
 // rolled, as EN 15302 prescribes (each wheel brought into contact on its own); `--roll solved`
 // rolls it until both wheels touch together.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -23,6 +24,7 @@
 #include "wrc/core/errors.h"
 #include "wrc/core/profile.h"
 #include "wrc/core/profile_placement.h"
+#include "wrc/runtime.hpp"
 
 namespace wrc::cli {
 namespace {
@@ -31,6 +33,7 @@ namespace fs = std::filesystem;
 
 struct GeometryOptions {
   std::string case_path, left_wheel, out;
+  std::string table;  // a right wheel's table with rolling_radius: its Δr beside the rigid one
   double left_radius = 0.0;  // 0: the case's nominal radius
   double y_max = 10.0, y_step = 0.1;
   double step = 0.01;  // rail arc length between gap samples, mm
@@ -49,6 +52,9 @@ struct Row {
   double roll = 0.0;         // rad
   RigidContact right, left;  // left: its right-side equivalent at −y
   bool jump = false;
+  // From --table: the rolling radii under the table's load (NaN without a table, or where the
+  // table has no contact).
+  double table_r_right = NAN, table_r_left = NAN;
 };
 
 std::vector<Row> Sweep(const Case& right, const Case& left, const GeometryOptions& o) {
@@ -89,6 +95,54 @@ RollingRadiusDifference DrOf(const std::vector<Row>& rows) {
   return dr;
 }
 
+// The table's point for a lateral shift y: y (or y_wheel, the same without roll) at y, every
+// other axis at 0 within its range, except fz at its lightest node, the load nearest the rigid
+// contact. A table over z has no such load and is refused, as is one made for a left wheel
+// (the right wheel reads the table, the left its mirror image).
+std::vector<double> TablePoint(const Table& table, double y) {
+  std::vector<double> point;
+  for (int a = 0; a < table.num_axes(); ++a) {
+    const std::string name = table.axis_name(a);
+    const std::vector<double> nodes = table.axis_values(a);
+    point.push_back(name == "y" || name == "y_wheel" ? y
+                    : name == "fz"                   ? nodes.front()
+                                   : std::clamp(0.0, nodes.front(), nodes.back()));
+  }
+  return point;
+}
+
+// The rolling radii under load for each shift: the right wheel at y, the left (its right-side
+// equivalent, as the rigid rows hold it) at −y.
+void CheckGeometryTable(const Table& table, const std::string& path) {
+  const std::vector<std::string> axes = table.axis_names(), outputs = table.output_names();
+  const auto has = [](const std::vector<std::string>& names, const char* name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  if (!has(axes, "y") && !has(axes, "y_wheel")) {
+    throw InputError(path + ": --table needs a table over y (or y_wheel)");
+  }
+  if (has(axes, "z")) throw InputError(path + ": --table needs a table at a load (fz), not over z");
+  if (!has(outputs, "rolling_radius")) {
+    throw InputError(path + ": --table needs the output rolling_radius");
+  }
+  const char* side = wrc_table_attribute(table.get(), "wheelset_side");
+  if (side == nullptr || std::string(side) != "right") {
+    throw InputError(path +
+                     ": --table needs a table made for the right wheel (its attribute "
+                     "wheelset_side; tables written before it: regenerate)");
+  }
+}
+
+void ReadTableRadii(const std::string& path, std::vector<Row>& rows) {
+  const Table table(path);
+  CheckGeometryTable(table, path);
+  const int radius = table.output_index("rolling_radius");
+  for (Row& r : rows) {
+    r.table_r_right = table.eval(TablePoint(table, r.y))[radius];
+    r.table_r_left = table.eval(TablePoint(table, -r.y))[radius];
+  }
+}
+
 // Positions in the track frame as a user reads them: the left wheel's mirrored back (y < 0).
 // Contact angles in each wheel's own sense, positive where its surface rises towards its
 // flange (the tread's cone, about 70° on a flank), so that a symmetric pair differs by 0 at
@@ -96,14 +150,15 @@ RollingRadiusDifference DrOf(const std::vector<Row>& rows) {
 void WriteGeometry(const fs::path& path, const std::vector<Row>& rows) {
   OutputText csv(path);
   csv << "y_mm,dr_mm,r_right_mm,r_left_mm,contact_angle_right_rad,contact_angle_left_rad,"
-         "rail_y_right_mm,rail_y_left_mm,wheel_y_right_mm,wheel_y_left_mm,jump,roll_rad\n";
+         "rail_y_right_mm,rail_y_left_mm,wheel_y_right_mm,wheel_y_left_mm,jump,roll_rad,"
+         "table_dr_mm\n";
   csv.precision(10);
   for (const Row& r : rows) {
     csv << r.y << ',' << r.right.rolling_radius - r.left.rolling_radius << ','
         << r.right.rolling_radius << ',' << r.left.rolling_radius << ',' << -r.right.contact_angle
         << ',' << -r.left.contact_angle << ',' << r.right.rail_y << ',' << -r.left.rail_y << ','
         << r.right.wheel_y << ',' << r.left.wheel_y << ',' << (r.jump ? 1 : 0) << ',' << r.roll
-        << '\n';
+        << ',' << r.table_r_right - r.table_r_left << '\n';
   }
   csv.Commit();
 }
@@ -112,31 +167,57 @@ void WriteGeometry(const fs::path& path, const std::vector<Row>& rows) {
 struct ConicityPoint {
   EquivalentConicity integration;
   double regression = NAN;
+  double table = NAN;  // the integration on --table's Δr under load
 };
 
-std::vector<ConicityPoint> Conicity(const RollingRadiusDifference& dr, double y_max) {
+// Δr from --table's rolling radii, where the table gives both (none without a table).
+RollingRadiusDifference TableDrOf(const std::vector<Row>& rows) {
+  RollingRadiusDifference dr;
+  for (const Row& r : rows) {
+    const double value = r.table_r_right - r.table_r_left;
+    if (!std::isfinite(value)) continue;
+    dr.y.push_back(r.y);
+    dr.dr.push_back(value);
+  }
+  return dr;
+}
+
+std::vector<ConicityPoint> Conicity(const std::vector<Row>& rows, double y_max) {
+  const RollingRadiusDifference dr = DrOf(rows), table_dr = TableDrOf(rows);
   std::vector<ConicityPoint> curve;
   for (int i = 1; i * 0.1 <= y_max + 1e-9; ++i) {
-    const auto c = EquivalentConicityAt(dr, 0.1 * i);
-    if (c.valid) curve.push_back({c, EquivalentConicityByRegression(dr, 0.1 * i)});
+    const double amplitude = 0.1 * i;
+    const auto c = EquivalentConicityAt(dr, amplitude);
+    if (!c.valid) continue;
+    ConicityPoint point{c, EquivalentConicityByRegression(dr, amplitude)};
+    if (table_dr.y.size() >= 2) {
+      const auto t = EquivalentConicityAt(table_dr, amplitude);
+      if (t.valid) point.table = t.tan_gamma_e;
+    }
+    curve.push_back(point);
   }
   return curve;
 }
 
 void WriteConicity(const fs::path& path, const std::vector<ConicityPoint>& curve) {
   OutputText csv(path);
-  csv << "amplitude_mm,tan_gamma_e,y_min_mm,y_max_mm,tan_gamma_e_regression\n";
+  csv << "amplitude_mm,tan_gamma_e,y_min_mm,y_max_mm,tan_gamma_e_regression,tan_gamma_e_table\n";
   csv.precision(10);
-  for (const auto& [c, regression] : curve) {
+  for (const auto& [c, regression, table] : curve) {
     csv << c.amplitude << ',' << c.tan_gamma_e << ',' << c.y_min << ',' << c.y_max << ','
-        << regression << '\n';
+        << regression << ',' << table << '\n';
   }
   csv.Commit();
 }
 
 // The classic panels: Δr(y), the contact angle difference, the contact points on the rail and
 // on the wheel against y, and the equivalent conicity against amplitude by both methods.
-void DrawGeometry(const fs::path& out) {
+void DrawGeometry(const fs::path& out, bool with_table) {
+  // --table's curves beside the rigid ones (gnuplot refuses a column of NaN alone).
+  const std::string table_dr =
+      with_table ? ", '' using 1:13 with lines dashtype 3 title 'table (under load)'" : "";
+  const std::string table_conicity =
+      with_table ? ", '' using 1:6 with lines dashtype 3 title 'table (under load)'" : "";
   const std::string script =
       "set terminal pngcairo size 1200,1300 font ',10'\n"
       "set output 'geometry.png'\n"
@@ -145,7 +226,9 @@ void DrawGeometry(const fs::path& out) {
       "set multiplot layout 3,2\n"
       "set grid\n"
       "set xlabel 'y, mm'\nset ylabel 'Δr, mm'\nset title 'Rolling-radius difference'\n"
-      "plot 'geometry.csv' using 1:2 with lines notitle\n"
+      "plot 'geometry.csv' using 1:2 with lines title 'rigid'" +
+      table_dr +
+      "\n"
       "set ylabel 'γ_R − γ_L, rad'\nset title 'Contact angle difference'\n"
       "plot 'geometry.csv' using 1:($5-$6) with lines notitle\n"
       "set ylabel 'contact point on the rail, mm (track frame)'\n"
@@ -160,7 +243,9 @@ void DrawGeometry(const fs::path& out) {
       "set xlabel 'amplitude ŷ, mm'\nset ylabel 'tan γe'\n"
       "set title 'Equivalent conicity (EN 15302)'\n"
       "plot 'conicity.csv' using 1:2 with lines title 'integration (reference method)', "
-      "'' using 1:5 with lines dashtype 2 title 'linear regression of Δr'\n"
+      "'' using 1:5 with lines dashtype 2 title 'linear regression of Δr'" +
+      table_conicity +
+      "\n"
       "unset multiplot\n";
   if (!RunGnuplot(out, "geometry.gp", script)) {
     std::cerr << "wrc geometry: gnuplot is not installed: geometry.png is not drawn (the CSV "
@@ -190,10 +275,11 @@ nlohmann::json Summary(const std::vector<Row>& rows, const std::vector<ConicityP
     if (r.jump) j["jumps_y_mm"].push_back(r.y);
   }
   j["conicity"] = nlohmann::json::array();
-  for (const auto& [c, regression] : curve) {
+  for (const auto& [c, regression, table] : curve) {
     j["conicity"].push_back({{"amplitude_mm", c.amplitude},
                              {"tan_gamma_e", c.tan_gamma_e},
-                             {"tan_gamma_e_regression", NumberOrNull(regression)}});
+                             {"tan_gamma_e_regression", NumberOrNull(regression)},
+                             {"tan_gamma_e_table", NumberOrNull(table)}});
   }
   j["roll"] = roll == "solved" ? "solved" : "none (EN 15302)";
   return j;
@@ -209,7 +295,8 @@ void RunGeometry(const GeometryOptions& o) {
     left.wheel.spline = SplineOf(left.wheel, ProfileKind::kWheel);
   }
   if (o.left_radius > 0.0) left.wheelset.nominal_radius = o.left_radius;
-  const std::vector<Row> rows = Sweep(right, left, o);
+  std::vector<Row> rows = Sweep(right, left, o);
+  if (!o.table.empty()) ReadTableRadii(o.table, rows);
   std::vector<double> at_end;
   for (const Row& r : rows) {
     if (r.right.at_profile_end || r.left.at_profile_end) at_end.push_back(r.y);
@@ -220,13 +307,13 @@ void RunGeometry(const GeometryOptions& o) {
               << " shifts) a contact lies at the end of a profile: those rows describe the "
                  "profiles' edges, not a contact; a smaller --y-max stays within them\n";
   }
-  const std::vector<ConicityPoint> curve = Conicity(DrOf(rows), o.y_max);
+  const std::vector<ConicityPoint> curve = Conicity(rows, o.y_max);
   const nlohmann::json summary = Summary(rows, curve, o.roll);
   if (!o.out.empty()) {
     fs::create_directories(o.out);
     WriteGeometry(fs::path(o.out) / "geometry.csv", rows);
     WriteConicity(fs::path(o.out) / "conicity.csv", curve);
-    DrawGeometry(o.out);
+    DrawGeometry(o.out, !o.table.empty());
   }
   if (o.json) {
     std::cout << summary.dump(2) << '\n';
@@ -267,6 +354,9 @@ void AddGeometryCommand(CLI::App& app, int* exit_code) {
                   "rolls until both touch together")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "solved"}));
+  cmd->add_option("--table", o->table,
+                  "A right wheel's table over y with the output rolling_radius: its Δr under load "
+                  "beside the rigid one (geometry.csv column table_dr_mm, and the picture)");
   cmd->add_flag("--json", o->json, "The summary as JSON");
   cmd->callback([=]() {
     try {
