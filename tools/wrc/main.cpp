@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "runtime/hdf5/hdf5.h"
+#include "studies/studies.h"
 #include "tools/wrc/commands.h"
 #include "wrc/core/output_file.h"
 

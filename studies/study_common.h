@@ -74,7 +74,4 @@ SolveSummary SolveAndSummarize(const Case& c, const WheelRailOptions& options = 
 std::vector<SolveSummary> SolveAll(const std::vector<Case>& cases, int threads,
                                    const WheelRailOptions& options = {});
 
-/// The default of --threads: all cores.
-int AllCores();
-
 }  // namespace wrc::cli

@@ -1,6 +1,6 @@
 // Quasi-static curving of the bogie (curving.h).
 
-#include "tools/dynamics/curving.h"
+#include "studies/dynamics/curving.h"
 
 #include <unsupported/Eigen/NonLinearOptimization>
 

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "studies/study_commands.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
@@ -514,6 +515,8 @@ int RunCaseSweep(const CaseSweepOptions& o, const fs::path& out_dir, int threads
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
 
+}  // namespace
+
 void AddStabilityStudy(CLI::App& study, int* exit_code) {
   auto* stability = study.add_subcommand(
       "stability",
@@ -565,18 +568,6 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
       *exit_code = ReportFailure("wrc study stability");
     }
   });
-}
-
-}  // namespace
-
-void AddStudyCommand(CLI::App& app, int* exit_code) {
-  auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
-  study->require_subcommand(1);
-  AddCostStudies(*study, exit_code);
-  AddStabilityStudy(*study, exit_code);
-  AddDynamicsStudy(*study, exit_code);
-  AddPaperStudy(*study, exit_code);
-  AddPlanarStudy(*study, exit_code);
 }
 
 }  // namespace wrc::cli

@@ -1,11 +1,11 @@
 // The bogie model of bogie.h: parameters, equations of motion, linear stability, integration.
 
-#include "tools/dynamics/bogie.h"
+#include "studies/dynamics/bogie.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "tools/dynamics/parameter_file.h"
+#include "studies/dynamics/parameter_file.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 

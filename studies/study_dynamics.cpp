@@ -1,5 +1,5 @@
 // `wrc study dynamics TABLE.h5... --out DIR`: a wheelset simulated with its contact forces from
-// the table and from full solves (tools/dynamics): trajectories, hunting frequency and growth
+// the table and from full solves (studies/dynamics): trajectories, hunting frequency and growth
 // rate against speed, critical speeds, and what each costs.
 
 #include <algorithm>
@@ -20,15 +20,16 @@
 #include <thread>
 #include <vector>
 
-#include "tools/dynamics/analysis.h"
-#include "tools/dynamics/bogie.h"
-#include "tools/dynamics/curving.h"
-#include "tools/dynamics/forces.h"
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/analysis.h"
+#include "studies/dynamics/bogie.h"
+#include "studies/dynamics/curving.h"
+#include "studies/dynamics/forces.h"
+#include "studies/dynamics/model.h"
+#include "studies/shipped_files.h"
+#include "studies/study_commands.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
-#include "tools/wrc/shipped_files.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
 #include "wrc/generator/worker_threads.h"

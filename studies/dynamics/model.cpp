@@ -1,6 +1,6 @@
 // The wheelset model of model.h: parameters, equations of motion and the integrator.
 
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/model.h"
 
 #include <time.h>
 
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <utility>
 
-#include "tools/dynamics/parameter_file.h"
+#include "studies/dynamics/parameter_file.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 

@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "studies/shipped_files.h"
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/output_text.h"
-#include "tools/wrc/shipped_files.h"
-#include "tools/wrc/study_common.h"
 #include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"

@@ -1,4 +1,4 @@
-#include "tools/wrc/study_common.h"
+#include "studies/study_common.h"
 
 #include <algorithm>
 #include <atomic>
@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "studies/shipped_files.h"
 #include "tools/wrc/gnuplot.h"
-#include "tools/wrc/shipped_files.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
 #include "wrc/generator/worker_threads.h"
@@ -150,8 +150,6 @@ std::vector<SolveSummary> SolveAll(const std::vector<Case>& cases, int threads,
               [&](std::size_t k) { out[k] = SolveAndSummarize(cases[k], options); });
   return out;
 }
-
-int AllCores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 std::vector<fs::path> WriteShippedFiles(const fs::path& dir,
                                         const std::vector<std::string>& names) {

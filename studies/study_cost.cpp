@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "studies/study_commands.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
