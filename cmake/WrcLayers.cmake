@@ -59,13 +59,16 @@ wrc_layer(generator_public DIRS wrc/generator)
 wrc_layer(generator DIRS generator runtime/interp runtime/format)
 # The wheelset FMU: the runtime's C API below it.
 wrc_layer(fmu DIRS fmu HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
-# The dynamics model (studies/dynamics): the solver's and the runtime's public headers below it.
-wrc_layer(dynamics DIRS studies/dynamics)
+# The dynamics model (studies/dynamics): the solver's and the runtime's public headers below it,
+# and the angle constants of the tools (tools/angles.h, header-only).
+wrc_layer(dynamics DIRS studies/dynamics HEADERS tools/angles.h)
 # The studies (studies/, with the dynamics model): above the generator, the solver and the
 # runtime, and beside the command line, of which they share the option checks, exit codes,
-# gnuplot, text outputs and table check (the library wrc_cli_support), nothing else.
-set(WRC_CLI_SHARED_HEADERS tools/wrc/commands.h tools/wrc/exit_codes.h tools/wrc/gnuplot.h
-                           tools/wrc/output_text.h tools/wrc/thread_option.h tools/wrc/verify.h)
+# gnuplot, text outputs and table check (the library wrc_cli_support) and the angle constants,
+# nothing else.
+set(WRC_CLI_SHARED_HEADERS tools/angles.h tools/wrc/commands.h tools/wrc/exit_codes.h
+                           tools/wrc/gnuplot.h tools/wrc/output_text.h tools/wrc/thread_option.h
+                           tools/wrc/verify.h)
 wrc_layer(studies DIRS studies HEADERS ${WRC_CLI_SHARED_HEADERS})
 # The command line: its own sources, the dynamics model (`wrc fmu` checks a table with its
 # table forces) and of the studies their entry point only.

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,7 +16,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "studies/dynamics/analysis.h"
@@ -27,12 +25,12 @@
 #include "studies/dynamics/model.h"
 #include "studies/shipped_files.h"
 #include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
-#include "wrc/generator/worker_threads.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {
@@ -84,13 +82,6 @@ struct Row {
   int steps = 0;
   std::string failure;  // why a solver run stopped
 };
-
-std::string Fixed(double v, int digits) {
-  if (std::isnan(v)) return "–";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
 
 // Four significant digits: the derivatives span eight decades, and their ratios are what is read.
 std::string Significant(double v) {
@@ -314,8 +305,7 @@ void TableStudy::PrepareSolver() {
   if (solver_forces_) return;
   const auto t0 = std::chrono::steady_clock::now();
   solver_forces_ = std::make_unique<dynamics::SolverForces>(solver_scene_, geometry_);
-  solver_roll_seconds_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  solver_roll_seconds_ = SecondsSince(t0);
   solver_roll_solves_ = solver_forces_->solves();
 }
 
@@ -417,14 +407,10 @@ void TableStudy::RunSolver() {
   // The first runs side by side, one thread each: a solver run is hundreds of CPU seconds.
   PrepareSolver();
   std::vector<std::optional<Trajectory>> runs(speeds.size());
-  std::atomic<std::size_t> next{0};
-  gen::WorkerThreads threads(
-      static_cast<int>(speeds.size()),
-      [this, &runs, &speeds, &next]() {
-        for (std::size_t k = next++; k < speeds.size(); k = next++) runs[k] = SolverRun(speeds[k]);
-      },
+  RunParallel(
+      speeds.size(), static_cast<int>(speeds.size()),
+      [this, &runs, &speeds](std::size_t k) { runs[k] = SolverRun(speeds[k]); },
       "wrc study dynamics");
-  threads.Join();
   for (std::size_t k = 0; k < speeds.size(); ++k) {
     if (!runs[k]) continue;
     CompareAt(speeds[k], *runs[k]);
@@ -705,25 +691,21 @@ void TableStudy::CurveVehicle() {
   }
   if (options_.no_solver) return;
   PrepareSolver();
-  std::atomic<std::size_t> next{0};
-  gen::WorkerThreads threads(
-      static_cast<int>(std::min<std::size_t>(curving_.size(), 2)),
-      [this, &next]() {
-        for (std::size_t k = next++; k < curving_.size(); k = next++) {
-          Curving& c = curving_[k];
-          dynamics::SolverForces leading = *solver_forces_, trailing = *solver_forces_;
-          const dynamics::ForceSource forces[2] = {
-              [&leading](const dynamics::State& s, double v) { return leading(s, v); },
-              [&trailing](const dynamics::State& s, double v) { return trailing(s, v); }};
-          try {
-            c.solver = dynamics::SolveCurving(*vehicle_, c.curve, forces);
-          } catch (const InputError& e) {
-            c.failure = e.what();
-          }
+  RunParallel(
+      curving_.size(), 2,
+      [this](std::size_t k) {
+        Curving& c = curving_[k];
+        dynamics::SolverForces leading = *solver_forces_, trailing = *solver_forces_;
+        const dynamics::ForceSource forces[2] = {
+            [&leading](const dynamics::State& s, double v) { return leading(s, v); },
+            [&trailing](const dynamics::State& s, double v) { return trailing(s, v); }};
+        try {
+          c.solver = dynamics::SolveCurving(*vehicle_, c.curve, forces);
+        } catch (const InputError& e) {
+          c.failure = e.what();
         }
       },
       "wrc study dynamics");
-  threads.Join();
   for (const Curving& c : curving_) {
     if (!c.failure.empty()) {
       std::cerr << "wrc study dynamics: warning: the solver's curving at R = "
@@ -1056,13 +1038,7 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
                   "critical speed and hunting frequency on each source's linearised contact, "
                   "and the runs on both sources")
       ->check(CLI::ExistingFile);
-  cmd->callback([options, exit_code]() {
-    try {
-      *exit_code = RunDynamicsStudy(*options);
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study dynamics");
-    }
-  });
+  OnRun(cmd, exit_code, "wrc study dynamics", [options]() { return RunDynamicsStudy(*options); });
 }
 
 }  // namespace wrc::cli

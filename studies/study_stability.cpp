@@ -2,7 +2,6 @@
 // curved method, with the properties that must hold checked and reported (CSV, gnuplot PNGs
 // and a Markdown summary).
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,13 +10,12 @@
 #include <functional>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
@@ -25,7 +23,6 @@
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/wheelrail.h"
-#include "wrc/generator/worker_threads.h"
 
 namespace wrc::cli {
 namespace {
@@ -147,30 +144,26 @@ Sample SolveOne(const CaseMaker& make_case, double parameter) {
   Sample s;
   s.parameter = parameter;
   const auto t0 = std::chrono::steady_clock::now();
-  try {
-    const Case c = make_case();
-    const WheelRailResult r = SolveWheelRail(c);
-    s.status = ToString(r.status);
-    s.message = r.message;
-    s.fx = r.force_T(0);
-    s.fy = r.force_T(1);
-    s.fz = r.force_T(2);
-    s.z = r.z;
-    s.contact_y = r.has_force_location ? r.contact_y : NAN;
-    s.n_patches = static_cast<int>(r.patches.size());
-    s.fz_iterations = r.fz_iterations;
-    for (const PatchResult& p : r.patches) {
-      s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
-      s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
-    }
-  } catch (const InputError& e) {  // the case does not solve; a bug propagates
-    s.status = "error";
-    s.message = e.what();
-  } catch (const NumericalError& e) {
-    s.status = "error";
-    s.message = e.what();
-  }
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  RecordSolveError(
+      [&]() {
+        const Case c = make_case();
+        const WheelRailResult r = SolveWheelRail(c);
+        s.status = ToString(r.status);
+        s.message = r.message;
+        s.fx = r.force_T(0);
+        s.fy = r.force_T(1);
+        s.fz = r.force_T(2);
+        s.z = r.z;
+        s.contact_y = r.has_force_location ? r.contact_y : NAN;
+        s.n_patches = static_cast<int>(r.patches.size());
+        s.fz_iterations = r.fz_iterations;
+        for (const PatchResult& p : r.patches) {
+          s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
+          s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
+        }
+      },
+      &s.status, &s.message);
+  s.seconds = SecondsSince(t0);
   return s;
 }
 
@@ -178,14 +171,10 @@ using Job = std::pair<CaseMaker, double>;
 
 std::vector<Sample> RunAll(const std::vector<Job>& jobs, int threads) {
   std::vector<Sample> out(jobs.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    for (std::size_t k = next++; k < jobs.size(); k = next++) {
-      out[k] = SolveOne(jobs[k].first, jobs[k].second);
-    }
-  };
-  gen::WorkerThreads pool(threads, worker, "wrc study stability");
-  pool.Join();
+  RunParallel(
+      jobs.size(), threads,
+      [&](std::size_t k) { out[k] = SolveOne(jobs[k].first, jobs[k].second); },
+      "wrc study stability");
   return out;
 }
 
@@ -465,7 +454,7 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
   WritePlotLinks(summary, done);
   if (!skipped.empty()) summary << "\nLeft out, for want of their profiles:" << skipped << "\n";
   summary.Commit();
-  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  SayReport("stability", out_dir / "README.md");
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
 
@@ -511,7 +500,7 @@ int RunCaseSweep(const CaseSweepOptions& o, const fs::path& out_dir, int threads
   const int failures = RunSweep(sweep, o.methods, make, threads, out_dir, summary);
   WritePlotLinks(summary, {sweep});
   summary.Commit();
-  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  SayReport("stability", out_dir / "README.md");
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
 
@@ -526,7 +515,7 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
   auto out = std::make_shared<std::string>("study-stability");
   auto profiles = std::make_shared<std::string>();
   auto quick = std::make_shared<bool>(false);
-  auto threads = std::make_shared<int>(static_cast<int>(std::thread::hardware_concurrency()));
+  auto threads = std::make_shared<int>(AllCores());
   stability->add_option("CASE", sweep->case_path, "Wheel-rail case file to sweep")
       ->check(CLI::ExistingFile);
   std::vector<std::string> names;
@@ -543,30 +532,20 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
       ->capture_default_str();
   stability->add_flag("--continuity", sweep->check_continuity,
                       "Also solve at half the step and report the jump ratio");
-  stability->add_option("--out", *out, "Output directory (CSV, PNG, README.md)")
-      ->capture_default_str();
+  AddOutOption(stability, out.get(), "Output directory (CSV, PNG, README.md)");
   stability->add_option("--profiles", *profiles,
                         "Without CASE: directory with the profiles of the built-in hard cases");
   stability->add_flag("--quick", *quick, "Built-in hard cases: double every step");
-  stability->add_option("--threads", *threads, "Worker threads")
-      ->check(ThreadCount(false))
-      ->capture_default_str();
-  stability->callback([=]() {
-    try {
-      if (!sweep->case_path.empty()) {
-        *exit_code = RunCaseSweep(*sweep, *out, std::max(1, *threads));
-        return;
-      }
-      if (profiles->empty()) {
-        throw InputError("give a CASE to sweep, or --profiles DIR for the built-in hard cases");
-      }
-      if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
-        throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
-      }
-      *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study stability");
+  AddThreadsOption(stability, threads.get(), false);
+  OnRun(stability, exit_code, "wrc study stability", [=]() {
+    if (!sweep->case_path.empty()) return RunCaseSweep(*sweep, *out, std::max(1, *threads));
+    if (profiles->empty()) {
+      throw InputError("give a CASE to sweep, or --profiles DIR for the built-in hard cases");
     }
+    if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
+      throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
+    }
+    return RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
   });
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "studies/dynamics/parameter_file.h"
+#include "tools/angles.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 
@@ -186,7 +187,7 @@ std::complex<double> DominantEigenvalue(const BogieMatrix& a) {
 }
 
 double FrequencyOf(std::complex<double> eigenvalue) {
-  return std::fabs(eigenvalue.imag()) / (2.0 * M_PI);
+  return std::fabs(eigenvalue.imag()) / (2.0 * tools::kPi);
 }
 
 double BogieCriticalSpeed(const BogieParameters& p, const LinearisedContact& contact, double v_low,
