@@ -109,12 +109,16 @@ void RunParallel(std::size_t n, int threads, const std::function<void(std::size_
   pool.Join();
 }
 
+void DrawOrSay(const fs::path& dir, const std::string& script_name, const std::string& script,
+               const std::string& missing) {
+  if (!RunGnuplot(dir, script_name, script)) std::cerr << missing << '\n';
+}
+
 void RunGnuplot(const fs::path& dir, const std::string& name, const std::string& script,
                 const std::string& who) {
-  if (!RunGnuplot(dir, name + ".gp", script)) {
-    std::cerr << who << ": gnuplot is not installed (Debian: gnuplot-nox): no picture from " << name
-              << ".gp\n";
-  }
+  DrawOrSay(
+      dir, name + ".gp", script,
+      who + ": gnuplot is not installed (Debian: gnuplot-nox): no picture from " + name + ".gp");
 }
 
 std::string GnuplotLiteral(const std::string& text) {

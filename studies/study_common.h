@@ -71,8 +71,14 @@ std::string MethodSection(const PaperMethod& m, double combine_distance);
 void RunParallel(std::size_t n, int threads, const std::function<void(std::size_t)>& job,
                  const std::string& who = "wrc study");
 
+/// Writes `script` as dir/script_name and runs gnuplot on it in `dir` (RunGnuplot,
+/// tools/wrc/gnuplot.h); prints the line `missing` on stderr when gnuplot is not installed, what
+/// is lost being the picture, never the data.
+void DrawOrSay(const std::filesystem::path& dir, const std::string& script_name,
+               const std::string& script, const std::string& missing);
+
 /// Writes `script` as dir/name.gp and runs gnuplot on it in `dir`; says so on stderr (with
-/// `who` as prefix) when gnuplot fails or is missing, the data being written already.
+/// `who` as prefix) when gnuplot is missing, the data being written already.
 void RunGnuplot(const std::filesystem::path& dir, const std::string& name,
                 const std::string& script, const std::string& who);
 

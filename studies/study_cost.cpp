@@ -76,10 +76,9 @@ SolverRow SolveTimed(const Case& c) {
 // Writes the gnuplot script and runs it; a missing gnuplot costs the picture, not the data.
 void DrawStudy(const fs::path& dir, const std::string& script_name, const std::string& script,
                const std::string& study) {
-  if (!RunGnuplot(dir, script_name, script)) {
-    std::cerr << "wrc study " << study << ": gnuplot is not installed (Debian: gnuplot-nox); the "
-              << "data is in " << dir.string() << '\n';
-  }
+  DrawOrSay(dir, script_name, script,
+            "wrc study " + study +
+                ": gnuplot is not installed (Debian: gnuplot-nox); the data is in " + dir.string());
 }
 
 // The error of fy of `r` against the finest solve of its case, as a fraction of that solve's fz.

@@ -184,6 +184,11 @@ class TableStudy {
   std::optional<Trajectory> SolverRun(double speed_m_s);
   void CompareAt(double speed_m_s, const Trajectory& solver);
   void WriteSpeedsCsv() const;
+  // Draws out_/stem.png from `script` (out_/stem.gp), or says that gnuplot is missing.
+  void Draw(const std::string& stem, const std::string& script) const {
+    DrawOrSay(out_, stem + ".gp", script,
+              "wrc study dynamics: gnuplot is not installed: no " + stem + ".png");
+  }
   void WriteHuntingPlot() const;
   void WriteSummary() const;
   void WriteRunsSummary(std::ostream& md) const;
@@ -372,8 +377,7 @@ void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
      << ".csv' skip 1 using 1:($3*1000) with lines lw 2 title 'table', '' skip 1 using 1:($5*1000) "
         "with lines dt 2 lw 2 title 'solver'\n"
      << "unset multiplot\n";
-  if (!RunGnuplot(out_, stem + ".gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no " << stem << ".png\n";
+  Draw(stem, gp.str());
 }
 
 // The adjacent (speed, growth rate) pairs whose growth changes sign from negative, sorting
@@ -568,8 +572,7 @@ void TableStudy::WriteCentredPlot() const {
         "'' skip 1 using 1:4 with lines title 'solver'\n"
      << "set ylabel 'M_z, N mm'\nplot 'centred.csv' skip 1 using 1:3 with lines lw 2 title "
         "'table', '' skip 1 using 1:5 with lines title 'solver'\nunset multiplot\n";
-  if (!RunGnuplot(out_, "centred.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no centred.png\n";
+  Draw("centred", gp.str());
 }
 
 void TableStudy::WriteLinearSummary(std::ostream& md) const {
@@ -763,8 +766,7 @@ void TableStudy::WriteCurvingPlot() const {
   // Tγ where the table has it (a table made without the t_gamma output gives NaN).
   if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma)) panel("T{/Symbol g}, N", 18);
   gp << "unset multiplot\n";
-  if (!RunGnuplot(out_, "curving.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no curving.png\n";
+  Draw("curving", gp.str());
 }
 
 void TableStudy::WriteCurvingSummary(std::ostream& md) const {
@@ -848,8 +850,7 @@ void TableStudy::WriteHuntingPlot() const {
         "'table', "
         "'' using (strcol(1) eq 'solver' ? $2 : 1/0):3 with points pt 5 ps 1.5 title 'solver'\n"
      << "unset multiplot\n";
-  if (!RunGnuplot(out_, "hunting.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no hunting.png\n";
+  Draw("hunting", gp.str());
 }
 
 void TableStudy::WriteSummary() const {
