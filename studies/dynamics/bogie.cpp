@@ -2,7 +2,6 @@
 
 #include "studies/dynamics/bogie.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "studies/dynamics/parameter_file.h"
@@ -240,8 +239,7 @@ BogieVector Slope(const BogieParameters& p, const ForceSource (&forces)[2], cons
 
 BogieTrajectory SimulateBogie(const BogieParameters& p, const ForceSource (&forces)[2],
                               double velocity) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = ThreadCpuSeconds();
+  const RunClock clock;
   BogieTrajectory run;
   const int steps = static_cast<int>(std::lround(p.duration / p.time_step));
   const double h = p.time_step;
@@ -261,8 +259,8 @@ BogieTrajectory SimulateBogie(const BogieParameters& p, const ForceSource (&forc
     x += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   }
   run.steps = steps;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.cpu_seconds = ThreadCpuSeconds() - cpu_start;
+  run.seconds = clock.WallSeconds();
+  run.cpu_seconds = clock.CpuSeconds();
   return run;
 }
 
