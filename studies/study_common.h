@@ -43,6 +43,8 @@ double SecondsSince(std::chrono::steady_clock::time_point t0);
 /// Says on stderr where the study's report is: "<who>: report in FILE".
 void SayReport(const std::string& who, const std::filesystem::path& report);
 
+// ---- the paper's methods ------------------------------------------------------------------
+
 /// One method of the paper's Table 1: reference surface, reference position and angle, weights.
 struct PaperMethod {
   std::string name;         ///< The paper's name ("icp-loc").
@@ -65,6 +67,8 @@ void ApplyPaperMethod(const PaperMethod& m, Method* method);
 /// The `[method]` section of a case file for `m`.
 std::string MethodSection(const PaperMethod& m, double combine_distance);
 
+// ---- parallel runs and pictures -----------------------------------------------------------
+
 /// Calls job(k) for k = 0 … n−1 on `threads` threads (at most n, at least one), named `who` in
 /// a failure to start them. An exception a job lets out ends its thread's share of the jobs and
 /// is rethrown once every thread has finished.
@@ -84,6 +88,8 @@ void RunGnuplot(const std::filesystem::path& dir, const std::string& name,
 
 /// The text with gnuplot's enhanced-text marks (_ ^ @ & ~ { }) escaped.
 std::string GnuplotLiteral(const std::string& text);
+
+// ---- numbers and solves as the reports write them ----------------------------------------
 
 /// v with `digits` decimals; "–" for NaN.
 std::string Fixed(double v, int digits);
