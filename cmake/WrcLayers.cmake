@@ -15,8 +15,9 @@ set(WRC_QUANTITY_HEADERS wrc/quantities.h wrc/table_limits.h)
 # wrc_layer(NAME DIRS dir... HEADERS header...): the directory
 # ${PROJECT_BINARY_DIR}/layers/NAME with links to the source directories DIRS (relative to the
 # project root, e.g. runtime/hdf5, or to include/ when they start with wrc/, e.g. wrc/core) and
-# to the public HEADERS (relative to include/, e.g. wrc/runtime.h). Sets WRC_LAYER_<NAME> to
-# the directory.
+# to the public HEADERS (relative to include/, e.g. wrc/runtime.h, or to the project root when
+# they do not start with wrc/, e.g. tools/wrc/gnuplot.h: a single header of another part).
+# Sets WRC_LAYER_<NAME> to the directory.
 function(wrc_layer name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "DIRS;HEADERS")
   set(root ${PROJECT_BINARY_DIR}/layers/${name})
@@ -33,7 +34,11 @@ function(wrc_layer name)
   foreach(header IN LISTS arg_HEADERS)
     get_filename_component(parent ${root}/${header} DIRECTORY)
     file(MAKE_DIRECTORY ${parent})
-    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/include/${header} ${root}/${header} SYMBOLIC)
+    if(header MATCHES "^wrc/")
+      file(CREATE_LINK ${PROJECT_SOURCE_DIR}/include/${header} ${root}/${header} SYMBOLIC)
+    else()
+      file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${header} ${root}/${header} SYMBOLIC)
+    endif()
   endforeach()
   set(WRC_LAYER_${name} ${root} PARENT_SCOPE)
 endfunction()
@@ -54,4 +59,17 @@ wrc_layer(generator_public DIRS wrc/generator)
 wrc_layer(generator DIRS generator runtime/interp runtime/format)
 # The wheelset FMU: the runtime's C API below it.
 wrc_layer(fmu DIRS fmu HEADERS ${WRC_RUNTIME_PUBLIC_HEADERS})
-wrc_layer(tools DIRS tools)
+# The dynamics model (studies/dynamics): the solver's and the runtime's public headers below it,
+# and the angle constants of the tools (tools/angles.h, header-only).
+wrc_layer(dynamics DIRS studies/dynamics HEADERS tools/angles.h)
+# The studies (studies/, with the dynamics model): above the generator, the solver and the
+# runtime, and beside the command line, of which they share the option checks, exit codes,
+# gnuplot, text outputs and table check (the library wrc_cli_support) and the angle constants,
+# nothing else.
+set(WRC_CLI_SHARED_HEADERS tools/angles.h tools/wrc/commands.h tools/wrc/exit_codes.h
+                           tools/wrc/gnuplot.h tools/wrc/output_text.h tools/wrc/thread_option.h
+                           tools/wrc/verify.h)
+wrc_layer(studies DIRS studies HEADERS ${WRC_CLI_SHARED_HEADERS})
+# The command line: its own sources, the dynamics model (`wrc fmu` checks a table with its
+# table forces) and of the studies their entry point only.
+wrc_layer(tools DIRS tools studies/dynamics HEADERS studies/studies.h)

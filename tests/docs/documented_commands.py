@@ -14,7 +14,7 @@ the build's `wrc` first in PATH, and each must exit with 0. What runs:
 Placeholders run on small stand-ins, and long jobs on a small equivalent (listed in
 STAND_INS): a 40-minute table on the 27-point demo scene, 1000 verify samples on 6, an
 error map of 31 × 31 solves on 5 × 5, a dynamics study's linearised contact in place of its
-minutes of solver-driven runs (those are checked in tests/dynamics).
+minutes of solver-driven runs (those are checked in tests/studies/dynamics).
 
 usage: documented_commands.py SOURCE_DIR BUILD_DIR [PYTHON]
 

@@ -80,23 +80,7 @@ void AddGeometryCommand(CLI::App& app, int* exit_code);
 /// Registers `wrc verify` (docs/reference/cli.md, wrc verify).
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 
-/// Adds `solver` and `tables` (accuracy against cost) to `wrc study`.
-void AddCostStudies(CLI::App& study, int* exit_code);
-
-/// Adds `dynamics` (a wheelset on table and on solver forces) to `wrc study`.
-void AddDynamicsStudy(CLI::App& study, int* exit_code);
-
 /// Registers `wrc plot` (patch, profiles, table; docs/plots.md).
 void AddPlotCommand(CLI::App& app, int* exit_code);
-
-/// Adds `paper` (the paper's Figs. 13-16 on the shipped heavy-haul profiles) to `wrc study`.
-void AddPaperStudy(CLI::App& study, int* exit_code);
-
-/// Adds `planar` (the planar methods of the paper's Table 1 against the curved reference over
-/// a set of profile pairs and poses, Table 3) to `wrc study`.
-void AddPlanarStudy(CLI::App& study, int* exit_code);
-
-/// Registers `wrc study` (stability, solver accuracy against cost).
-void AddStudyCommand(CLI::App& app, int* exit_code);
 
 }  // namespace wrc::cli

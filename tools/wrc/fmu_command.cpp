@@ -16,7 +16,7 @@
 #include "fmu/start_values.h"
 #include "fmu/variables.h"
 #include "runtime/format/flat_table.h"
-#include "tools/dynamics/forces.h"
+#include "studies/dynamics/forces.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/fmu_binary.h"
 #include "tools/wrc/verify.h"

@@ -10,7 +10,6 @@
 #include <string>
 
 #include "tools/wrc/commands.h"
-#include "tools/wrc/study_common.h"
 #include "tools/wrc/thread_option.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/hdf5/hdf5.h"
+#include "studies/studies.h"
 #include "tools/wrc/commands.h"
 
 int main(int argc, char** argv) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/angles.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
 #include "tools/wrc/plot.h"
@@ -165,7 +166,7 @@ std::string PatchTitle(const json& patch, int n) {
              ", cphi " + Short(get("cphi"), 3) + " 1/mm";
   }
   if (patch.contains("contact_angle")) {
-    title += ";  contact angle " + Short(get("contact_angle") * 180.0 / M_PI, 3) + "°";
+    title += ";  contact angle " + Short(tools::Degrees(get("contact_angle")), 3) + "°";
   }
   return title;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/angles.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
 #include "tools/wrc/plot.h"
@@ -163,9 +164,9 @@ void WritePatches(const fs::path& extents, const fs::path& normals, const Pose& 
     const Eigen::Vector2d ref(p.reference_T(1), p.reference_T(2));
     const Eigen::Vector2d tail = ref - kNormalLength * normal;
     nor << tail(0) << ' ' << tail(1) << ' ' << kNormalLength * normal(0) << ' '
-        << kNormalLength * normal(1) << ' ' << angle * 180.0 / M_PI << '\n';
+        << kNormalLength * normal(1) << ' ' << tools::Degrees(angle) << '\n';
     *labels += "set label " + std::to_string(n + 1) + " 'patch " + std::to_string(n + 1) + ": " +
-               Short(angle * 180.0 / M_PI, 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
+               Short(tools::Degrees(angle), 3) + "°, Fn " + Short(p.fn, 3) + " N' at " +
                Short(tail(0), 6) + "," + Short(tail(1), 6) + " offset char 1,0.5 front\n";
   }
   ext.Commit();

@@ -1,8 +1,10 @@
 #pragma once
-// The check of every --threads option of the table commands.
+// The check and the default of every --threads option of the table commands.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <string>
+#include <thread>
 
 #include "tools/wrc/commands.h"
 #include "wrc/generator/generator.h"
@@ -19,5 +21,8 @@ inline CLI::Validator ThreadCount(bool zero_is_all_cores) {
           std::to_string(kMaxWorkerThreads),
       "threads");
 }
+
+/// The default of --threads: all cores.
+inline int AllCores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 }  // namespace wrc::cli

@@ -1,4 +1,4 @@
-#include "tools/wrc/study_common.h"
+#include "studies/study_common.h"
 
 #include <algorithm>
 #include <atomic>
@@ -8,10 +8,11 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
+#include "studies/shipped_files.h"
+#include "tools/wrc/exit_codes.h"
 #include "tools/wrc/gnuplot.h"
-#include "tools/wrc/shipped_files.h"
+#include "tools/wrc/thread_option.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
 #include "wrc/generator/worker_threads.h"
@@ -19,6 +20,32 @@
 namespace wrc::cli {
 
 namespace fs = std::filesystem;
+
+void OnRun(CLI::App* command, int* exit_code, const std::string& who,
+           const std::function<int()>& run) {
+  command->callback([exit_code, who, run]() {
+    try {
+      *exit_code = run();
+    } catch (...) {
+      *exit_code = ReportFailure(who);
+    }
+  });
+}
+
+CLI::Option* AddThreadsOption(CLI::App* command, int* threads, bool zero_is_all_cores,
+                              const std::string& what) {
+  return command->add_option("--threads", *threads, what)
+      ->check(ThreadCount(zero_is_all_cores))
+      ->capture_default_str();
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void SayReport(const std::string& who, const fs::path& report) {
+  std::cerr << who << ": report in " << report.string() << '\n';
+}
 
 const std::vector<PaperMethod>& PaperMethods() {
   using RS = ReferenceSurface;
@@ -71,22 +98,27 @@ std::string MethodSection(const PaperMethod& m, double combine_distance) {
   return t.str();
 }
 
-void RunParallel(std::size_t n, int threads, const std::function<void(std::size_t)>& job) {
+void RunParallel(std::size_t n, int threads, const std::function<void(std::size_t)>& job,
+                 const std::string& who) {
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t k = next++; k < n; k = next++) job(k);
   };
   const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
-  gen::WorkerThreads pool(count, worker, "wrc study");
+  gen::WorkerThreads pool(count, worker, who);
   pool.Join();
+}
+
+void DrawOrSay(const fs::path& dir, const std::string& script_name, const std::string& script,
+               const std::string& missing) {
+  if (!RunGnuplot(dir, script_name, script)) std::cerr << missing << '\n';
 }
 
 void RunGnuplot(const fs::path& dir, const std::string& name, const std::string& script,
                 const std::string& who) {
-  if (!RunGnuplot(dir, name + ".gp", script)) {
-    std::cerr << who << ": gnuplot is not installed (Debian: gnuplot-nox): no picture from " << name
-              << ".gp\n";
-  }
+  DrawOrSay(
+      dir, name + ".gp", script,
+      who + ": gnuplot is not installed (Debian: gnuplot-nox): no picture from " + name + ".gp");
 }
 
 std::string GnuplotLiteral(const std::string& text) {
@@ -105,6 +137,11 @@ std::string Fixed(double v, int digits) {
   return buffer;
 }
 
+double LateralTrackY(const PatchResult& patch, int j) {
+  if (static_cast<int>(patch.curve_y.size()) == patch.grid.ny) return patch.curve_y[j];
+  return patch.reference_T(1) + patch.grid.y(j) * std::cos(patch.contact_angle);
+}
+
 // The patch that carries most of the load names the contact's angle and friction.
 void SummarizePatches(const Case& c, SolveSummary* s) {
   const std::vector<PatchResult>& patches = s->result.patches;
@@ -121,25 +158,34 @@ void SummarizePatches(const Case& c, SolveSummary* s) {
   }
 }
 
+void RecordSolveError(const std::function<void()>& solve, std::string* status,
+                      std::string* message) {
+  try {
+    solve();
+  } catch (const InputError& e) {  // the case does not solve; a bug propagates
+    *status = "error";
+    *message = e.what();
+  } catch (const NumericalError& e) {
+    *status = "error";
+    *message = e.what();
+  }
+}
+
 SolveSummary SolveAndSummarize(const Case& c, const WheelRailOptions& options) {
   SolveSummary s;
-  try {
-    s.result = SolveWheelRail(c, options);
-    s.status = ToString(s.result.status);
-    s.message = s.result.message;
-    s.fx = s.result.force_T(0);
-    s.fy = s.result.force_T(1);
-    s.fz = s.result.force_T(2);
-    s.z = s.result.z;
-    s.lv = s.fz != 0.0 ? s.fy / s.fz : NAN;
-    SummarizePatches(c, &s);
-  } catch (const InputError& e) {  // the case does not solve; a bug propagates
-    s.status = "error";
-    s.message = e.what();
-  } catch (const NumericalError& e) {
-    s.status = "error";
-    s.message = e.what();
-  }
+  RecordSolveError(
+      [&]() {
+        s.result = SolveWheelRail(c, options);
+        s.status = ToString(s.result.status);
+        s.message = s.result.message;
+        s.fx = s.result.force_T(0);
+        s.fy = s.result.force_T(1);
+        s.fz = s.result.force_T(2);
+        s.z = s.result.z;
+        s.lv = s.fz != 0.0 ? s.fy / s.fz : NAN;
+        SummarizePatches(c, &s);
+      },
+      &s.status, &s.message);
   return s;
 }
 
@@ -150,8 +196,6 @@ std::vector<SolveSummary> SolveAll(const std::vector<Case>& cases, int threads,
               [&](std::size_t k) { out[k] = SolveAndSummarize(cases[k], options); });
   return out;
 }
-
-int AllCores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 std::vector<fs::path> WriteShippedFiles(const fs::path& dir,
                                         const std::vector<std::string>& names) {

@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "studies/shipped_files.h"
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/output_text.h"
-#include "tools/wrc/shipped_files.h"
-#include "tools/wrc/study_common.h"
 #include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
@@ -258,6 +259,19 @@ void WriteFig13Csv(const fs::path& dir, const Fig13& f) {
   steps.Commit();
 }
 
+// One line per method of `data` (column 1: the method's index): x from column `x`, y from the
+// gnuplot expression `y`.
+std::string MethodLines(const std::string& data, int x, const std::string& y,
+                        const std::vector<std::string>& methods, const char* const* colours) {
+  std::ostringstream gp;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    gp << (m ? ", " : "") << "'" << data << "' skip 1 using ($1==" << m << " ? $" << x
+       << " : 1/0):" << y << " with linespoints lc rgb '" << colours[m] << "' pt 7 ps 0.4 title '"
+       << methods[m] << "'";
+  }
+  return gp.str();
+}
+
 void PlotFig13(const fs::path& dir, const Fig13& f) {
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1200,850 font ',10'\nset output 'fig13.png'\n"
@@ -274,13 +288,7 @@ void PlotFig13(const fs::path& dir, const Fig13& f) {
     } else {
       gp << "set xrange [*:*]\n";
     }
-    gp << "plot ";
-    for (std::size_t m = 0; m < f.methods.size(); ++m) {
-      gp << (m ? ", " : "") << "'fig13.csv' skip 1 using ($1==" << m << " ? $4 : 1/0):" << column
-         << " with linespoints lc rgb '" << colour[m] << "' pt 7 ps 0.4 title '" << f.methods[m]
-         << "'";
-    }
-    gp << "\n";
+    gp << "plot " << MethodLines("fig13.csv", 4, column, f.methods, colour) << "\n";
   };
   panel("F_z, kN", "($8/1000)", false);
   panel("L/V = F_y / F_z, -", "9", false);
@@ -336,17 +344,10 @@ void WriteFig14Csv(const fs::path& dir, const Fig14& f) {
       const SolveSummary& s = f.sweep[m][k];
       csv << m << ',' << f.methods[m] << ',' << f.omegas[k] << ',' << s.status << ',' << s.fx << ','
           << s.fs << ',' << s.fy << ',' << s.fz << ',' << s.z << ',' << s.n_patches << ','
-          << s.contact_angle * 180.0 / M_PI << ',' << s.mu << ",\"" << s.message << "\"\n";
+          << Degrees(s.contact_angle) << ',' << s.mu << ",\"" << s.message << "\"\n";
     }
   }
   csv.Commit();
-}
-
-// Lateral track position of grid row j: the curved reference's curve point, or on a plane
-// the offset s along the plane from the reference.
-double LateralTrackY(const PatchResult& r, int j) {
-  if (static_cast<int>(r.curve_y.size()) == r.grid.ny) return r.curve_y[j];
-  return r.reference_T(1) + r.grid.y(j) * std::cos(r.contact_angle);
 }
 
 // Per element in contact: tractions (Fig. 15) and rigid slip (Fig. 16), in each patch's own
@@ -386,13 +387,8 @@ void PlotFig14(const fs::path& dir, const Fig14& f) {
   const char* colour[] = {"#d62728", "#2ca02c", "#1f77b4"};
   for (const auto& [label, column] : {std::pair<std::string, std::string>{"F_x, kN", "($5/1000)"},
                                       {"F_s (sum over patches), kN", "($6/1000)"}}) {
-    gp << "set ylabel '" << label << "'\nplot ";
-    for (std::size_t m = 0; m < f.methods.size(); ++m) {
-      gp << (m ? ", " : "") << "'" << data << "' skip 1 using ($1==" << m
-         << " ? $3 : 1/0):" << column << " with linespoints lc rgb '" << colour[m]
-         << "' pt 7 ps 0.4 title '" << f.methods[m] << "'";
-    }
-    gp << "\n";
+    gp << "set ylabel '" << label << "'\nplot " << MethodLines(data, 3, column, f.methods, colour)
+       << "\n";
   }
   gp << "unset multiplot\n";
   RunGnuplot(dir, "fig14" + f.suffix, gp.str(), kWho);
@@ -495,9 +491,9 @@ void WriteFig14Summary(std::ostream& md, const Fig14& f) {
                                "varies: 0.20 … 0.35 across the patch"};
   for (std::size_t m = 0; m < f.methods.size(); ++m) {
     const SolveSummary& s = f.maps[m];
-    md << "| " << f.methods[m] << " | " << paper[m] << " | "
-       << Fixed(s.contact_angle * 180.0 / M_PI, 1) << "° | " << Fixed(s.mu, 3) << " | "
-       << s.n_patches << " | " << Kn(s.fx) << " | " << Kn(s.fs) << " | " << Kn(s.fy) << " |\n";
+    md << "| " << f.methods[m] << " | " << paper[m] << " | " << Fixed(Degrees(s.contact_angle), 1)
+       << "° | " << Fixed(s.mu, 3) << " | " << s.n_patches << " | " << Kn(s.fx) << " | " << Kn(s.fs)
+       << " | " << Kn(s.fy) << " |\n";
   }
   md << "\n";
 }
@@ -556,7 +552,7 @@ int RunPaperStudy(const PaperOptions& o) {
     }
   }
   WriteReadme(dir, o, f13.get(), f14);
-  std::cerr << kWho << ": report in " << (dir / "README.md").string() << '\n';
+  SayReport(kWho, dir / "README.md");
   return kExitOk;
 }
 
@@ -574,11 +570,8 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
       "The paper's two-point and conformal contact results (Figs. 13-16) on the shipped "
       "heavy-haul profiles");
   auto o = std::make_shared<PaperOptions>();
-  paper->add_option("--out", o->out, "Output directory (CSV, PNG, README.md, inputs/)")
-      ->capture_default_str();
-  paper->add_option("--threads", o->threads, "Worker threads")
-      ->check(ThreadCount(false))
-      ->capture_default_str();
+  AddOutOption(paper, &o->out, "Output directory (CSV, PNG, README.md, inputs/)");
+  AddThreadsOption(paper, &o->threads, false);
   paper->add_option("--z-range", o->z_range, "Fig. 13: wheelset heights FROM,TO,STEP, mm")
       ->delimiter(',')
       ->expected(3)
@@ -603,14 +596,10 @@ void AddPaperStudy(CLI::App& study, int* exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember({13, 14}))
       ->capture_default_str();
-  paper->callback([=]() {
-    try {
-      CheckRange(o->z_range, "--z-range");
-      CheckRange(o->omega_range, "--omega-range");
-      *exit_code = RunPaperStudy(*o);
-    } catch (...) {
-      *exit_code = ReportFailure(kWho);
-    }
+  OnRun(paper, exit_code, kWho, [o]() {
+    CheckRange(o->z_range, "--z-range");
+    CheckRange(o->omega_range, "--omega-range");
+    return RunPaperStudy(*o);
   });
 }
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Dense>
 
-#include "tools/dynamics/bogie.h"
+#include "studies/dynamics/bogie.h"
 
 namespace wrc::dynamics {
 

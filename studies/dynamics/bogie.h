@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/model.h"
 
 namespace wrc::dynamics {
 

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <string>
 
+#include "studies/dynamics/analysis.h"
+#include "studies/dynamics/forces.h"
+#include "studies/dynamics/model.h"
 #include "tests/generator/generator_test_util.h"
-#include "tools/dynamics/analysis.h"
-#include "tools/dynamics/forces.h"
-#include "tools/dynamics/model.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/scene.h"
 #include "wrc/core/wheelrail.h"

@@ -14,6 +14,7 @@
 ///
 /// Units: mm, rad, s, N, N·mm inside the model; kg and kg·m² for the inertias as published.
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -93,6 +94,20 @@ struct Trajectory {
 /// CPU time of the calling thread, s: on a shared machine the wall time also counts the time the
 /// thread waited for a core.
 double ThreadCpuSeconds();
+
+/// The wall time and the CPU time of the calling thread since a run started (its construction).
+class RunClock {
+ public:
+  RunClock() : wall_start_(std::chrono::steady_clock::now()), cpu_start_(ThreadCpuSeconds()) {}
+  double WallSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+  }
+  double CpuSeconds() const { return ThreadCpuSeconds() - cpu_start_; }
+
+ private:
+  std::chrono::steady_clock::time_point wall_start_;
+  double cpu_start_;
+};
 
 /// Integrates from the parameters' initial disturbance over their duration at `velocity`.
 Trajectory Simulate(const Parameters& p, const ForceSource& forces, double velocity);

@@ -1,6 +1,6 @@
 // Schema and sign checks of the dynamics parameter files (parameter_file.h).
 
-#include "tools/dynamics/parameter_file.h"
+#include "studies/dynamics/parameter_file.h"
 
 #include <algorithm>
 #include <cmath>

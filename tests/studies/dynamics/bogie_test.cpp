@@ -11,10 +11,10 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
-#include "tests/dynamics/vehicle_test_util.h"
-#include "tools/dynamics/analysis.h"
-#include "tools/dynamics/bogie.h"
-#include "tools/dynamics/forces.h"
+#include "studies/dynamics/analysis.h"
+#include "studies/dynamics/bogie.h"
+#include "studies/dynamics/forces.h"
+#include "tests/studies/dynamics/vehicle_test_util.h"
 #include "wrc/core/errors.h"
 
 namespace wrc::dynamics {

@@ -3,15 +3,15 @@
 // forces and yaw moments (the unbalanced force of every body and the car body's share) with
 // saturating creep forces in a curve with cant deficiency.
 
-#include "tools/dynamics/curving.h"
+#include "studies/dynamics/curving.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "tests/dynamics/vehicle_test_util.h"
-#include "tools/dynamics/forces.h"
+#include "studies/dynamics/forces.h"
+#include "tests/studies/dynamics/vehicle_test_util.h"
 #include "wrc/core/errors.h"
 
 namespace wrc::dynamics {

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
@@ -30,10 +32,6 @@ namespace wrc::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-double Seconds(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // ---- solver: accuracy against element size and time ------------------------------------------
 
@@ -69,7 +67,7 @@ SolverRow SolveTimed(const Case& c) {
       const HalfspaceResult r = SolveHalfspace(c);
       row = {"", 0.0, 0.0, r.fx, r.fy, r.fn, r.approach, ToString(r.status)};
     }
-    best = std::min(best, Seconds(t0));
+    best = std::min(best, SecondsSince(t0));
   }
   row.seconds = best;
   return row;
@@ -78,10 +76,9 @@ SolverRow SolveTimed(const Case& c) {
 // Writes the gnuplot script and runs it; a missing gnuplot costs the picture, not the data.
 void DrawStudy(const fs::path& dir, const std::string& script_name, const std::string& script,
                const std::string& study) {
-  if (!RunGnuplot(dir, script_name, script)) {
-    std::cerr << "wrc study " << study << ": gnuplot is not installed (Debian: gnuplot-nox); the "
-              << "data is in " << dir.string() << '\n';
-  }
+  DrawOrSay(dir, script_name, script,
+            "wrc study " + study +
+                ": gnuplot is not installed (Debian: gnuplot-nox); the data is in " + dir.string());
 }
 
 // The error of fy of `r` against the finest solve of its case, as a fraction of that solve's fz.
@@ -224,7 +221,7 @@ int StudySolver(const std::vector<std::string>& case_paths, std::vector<double> 
   std::vector<double> own_size;  // each case's element size as its file gives it
   for (const Case& c : cases) own_size.push_back(c.grid.dx);
   WriteSolverReport(out, rows, sizes, own_size);
-  std::cerr << "solver study: report in " << (out / "solver.md").string() << '\n';
+  SayReport("solver study", out / "solver.md");
   return kExitOk;
 }
 
@@ -454,7 +451,7 @@ TableRow GenerateAndMeasure(const Scene& scene, const char* kind, double target,
   row.kind = kind;
   row.target = target;
   row.points = summary.points;
-  row.generate_s = Seconds(t0);
+  row.generate_s = SecondsSince(t0);
   row.cpu_s = summary.cpu_seconds;
   row.axes = AxesText(summary.axes);
   *axes = summary.axes;
@@ -491,7 +488,7 @@ std::vector<TableRow> MidpointRulePasses(const Scene& scene, const TablesStudy& 
       study.out / ("midpoint_rule_" + std::to_string(study.midpoint_target) + ".h5");
   const auto t0 = std::chrono::steady_clock::now();
   const GenerateSummary summary = Generate(refined, path, study.threads, true);
-  const double wall = Seconds(t0);
+  const double wall = SecondsSince(t0);
   std::vector<TableRow> rows;
   for (std::size_t p = 0; p < summary.passes.size(); ++p) {
     TableRow row;
@@ -559,15 +556,10 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       ->delimiter(',')
       ->check(GreaterThanZero())
       ->capture_default_str();
-  solver->add_option("--out", *solver_out, "Output directory (solver.csv, .png, .md)")
-      ->capture_default_str();
-  solver->callback([=]() {
-    try {
-      if (sizes->size() < 2) throw InputError("--sizes: give at least two element sizes");
-      *exit_code = StudySolver(*cases, *sizes, *solver_out);
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study solver");
-    }
+  AddOutOption(solver, solver_out.get(), "Output directory (solver.csv, .png, .md)");
+  OnRun(solver, exit_code, "wrc study solver", [=]() {
+    if (sizes->size() < 2) throw InputError("--sizes: give at least two element sizes");
+    return StudySolver(*cases, *sizes, *solver_out);
   });
   auto* tables = study.add_subcommand(
       "tables",
@@ -578,8 +570,7 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
   options->out = "study-tables";
   tables->add_option("SCENE", options->scene, "Scene file (any; its axes give the ranges)")
       ->required();
-  tables->add_option("--out", options->out, "Output directory (tables.csv, .png, .md, the tables)")
-      ->capture_default_str();
+  AddOutOption(tables, &options->out, "Output directory (tables.csv, .png, .md, the tables)");
   tables
       ->add_option("--targets", options->targets,
                    "Refinement targets, fractions of the local wheel load")
@@ -596,16 +587,8 @@ void AddCostStudies(CLI::App& study, int* exit_code) {
       ->check(GreaterThanZero())
       ->capture_default_str();
   tables->add_option("--seed", options->seed, "Seed of the sample points")->capture_default_str();
-  tables->add_option("--threads", options->threads, "Worker threads; 0: all cores")
-      ->check(ThreadCount(true))
-      ->capture_default_str();
-  tables->callback([=]() {
-    try {
-      *exit_code = StudyTables(*options);
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study tables");
-    }
-  });
+  AddThreadsOption(tables, &options->threads, true, "Worker threads; 0: all cores");
+  OnRun(tables, exit_code, "wrc study tables", [options]() { return StudyTables(*options); });
 }
 
 }  // namespace wrc::cli

@@ -1,6 +1,6 @@
 // Force sources of the wheelset model (forces.h).
 
-#include "tools/dynamics/forces.h"
+#include "studies/dynamics/forces.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "tools/dynamics/bogie.h"
-#include "tools/dynamics/forces.h"
+#include "studies/dynamics/bogie.h"
+#include "studies/dynamics/forces.h"
 
 namespace wrc::dynamics::test {
 

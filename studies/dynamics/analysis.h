@@ -3,7 +3,7 @@
 /// What a simulated run says about hunting: its frequency and growth rate, and how two runs
 /// of the same model differ.
 
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/model.h"
 
 namespace wrc::dynamics {
 

@@ -16,10 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "studies/shipped_files.h"
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/output_text.h"
-#include "tools/wrc/shipped_files.h"
-#include "tools/wrc/study_common.h"
 #include "tools/wrc/thread_option.h"
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
@@ -152,6 +153,24 @@ class SplineCache {
   std::map<std::string, std::shared_ptr<const ProfileSpline>> splines_;
 };
 
+// The case of one wheel on one rail (`pair`: the case file with their sections) in the pose of
+// `a`, its profiles read through `splines`.
+AuditCase PoseCase(const toml::table& pair, AuditCase a, const fs::path& path,
+                   const std::string& who, SplineCache* splines) {
+  toml::table t = pair;
+  Merge(&t, "state", toml::table{{"y", a.y}, {"yaw", a.yaw}, {"roll", a.roll}, {"fz", a.fz}});
+  t.get_as<toml::table>("state")->erase("z");
+  std::ostringstream generated;
+  generated << t;
+  a.c = ParseCase(generated.str(), fs::absolute(path).parent_path(), who);
+  if (a.c.type != CaseType::kWheelRail) {
+    throw InputError(path.string() + ": problem.type must be \"wheel-rail\"");
+  }
+  a.c.rail.spline = splines->Get(a.c.rail, ProfileKind::kRail, who);
+  a.c.wheel.spline = splines->Get(a.c.wheel, ProfileKind::kWheel, who);
+  return a;
+}
+
 std::vector<AuditCase> LoadAudit(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string() + ": cannot read the cases file");
@@ -196,19 +215,8 @@ std::vector<AuditCase> LoadAudit(const fs::path& path) {
         for (double roll : rolls) {
           for (double yaw : yaws) {
             for (double y : ys) {
-              toml::table t = pair;
-              Merge(&t, "state", toml::table{{"y", y}, {"yaw", yaw}, {"roll", roll}, {"fz", fz}});
-              t.get_as<toml::table>("state")->erase("z");
-              std::ostringstream generated;
-              generated << t;
-              AuditCase a{
-                  wheel.name, rail.name, y, yaw, roll, fz, ParseCase(generated.str(), dir, who)};
-              if (a.c.type != CaseType::kWheelRail) {
-                throw InputError(path.string() + ": problem.type must be \"wheel-rail\"");
-              }
-              a.c.rail.spline = splines.Get(a.c.rail, ProfileKind::kRail, who);
-              a.c.wheel.spline = splines.Get(a.c.wheel, ProfileKind::kWheel, who);
-              cases.push_back(std::move(a));
+              cases.push_back(PoseCase(pair, {wheel.name, rail.name, y, yaw, roll, fz, {}}, path,
+                                       who, &splines));
             }
           }
         }
@@ -325,7 +333,7 @@ void WriteCasesCsv(const fs::path& dir, const std::vector<AuditCase>& cases, con
       csv << k << ',' << a.wheel << ',' << a.rail << ',' << a.y << ',' << a.yaw << ',' << a.roll
           << ',' << a.fz << ',' << m << ',' << PaperMethods()[m].name << ',' << s.status << ','
           << s.fx << ',' << s.fy << ',' << s.fz << ',' << s.lv << ',' << s.fs << ',' << s.n_patches
-          << ',' << s.contact_angle * 180.0 / M_PI << ',' << s.z << ",\"" << message << "\"\n";
+          << ',' << Degrees(s.contact_angle) << ',' << s.z << ",\"" << message << "\"\n";
     }
   }
   csv.Commit();
@@ -385,17 +393,13 @@ void PlotLv(const fs::path& dir, const std::vector<AuditCase>& cases, const Resu
   RunGnuplot(dir, "planar_lv", gp.str(), kWho);
 }
 
-// The line load Σ pn·dx along each grid row, at the row's lateral track position: on the
-// curved reference the row's curve point, on a plane the row's offset s along the plane.
+// The line load Σ pn·dx along each grid row, at the row's lateral track position.
 void WriteLineLoads(std::ostream& out, std::size_t m, const SolveSummary& s) {
   for (const PatchResult& p : s.result.patches) {
     for (int j = 0; j < p.grid.ny; ++j) {
       double q = 0.0;
       for (int i = 0; i < p.grid.nx; ++i) q += p.pn[p.grid.index(i, j)] * p.grid.dx;
-      const bool curved = static_cast<int>(p.curve_y.size()) == p.grid.ny;
-      const double y =
-          curved ? p.curve_y[j] : p.reference_T(1) + p.grid.y(j) * std::cos(p.contact_angle);
-      out << m << ' ' << y << ' ' << q << '\n';
+      out << m << ' ' << LateralTrackY(p, j) << ' ' << q << '\n';
     }
     out << '\n';
   }
@@ -526,8 +530,8 @@ void WriteReadme(const fs::path& dir, const std::string& source,
   for (std::size_t m = 0; m < worst_solves.size(); ++m) {
     const SolveSummary& s = worst_solves[m];
     md << "| " << PaperMethods()[m].name << " | " << s.status << " | "
-       << Fixed(s.contact_angle * 180.0 / M_PI, 1) << " | " << s.n_patches << " | " << Kn(s.fx)
-       << " | " << Kn(s.fs) << " | " << Kn(s.fy) << " | " << Fixed(s.lv, 3) << " |\n";
+       << Fixed(Degrees(s.contact_angle), 1) << " | " << s.n_patches << " | " << Kn(s.fx) << " | "
+       << Kn(s.fs) << " | " << Kn(s.fy) << " | " << Fixed(s.lv, 3) << " |\n";
   }
   md << "\n![the line load of each method](planar_worst.png)\n";
   md.Commit();
@@ -553,8 +557,7 @@ int RunPlanarStudy(const PlanarOptions& o) {
             << " methods on " << o.threads << " threads\n";
   const auto t0 = std::chrono::steady_clock::now();
   const Results r = SolveAudit(cases, o.threads);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = SecondsSince(t0);
   const StatsSet stats{AllStatistics(cases, r, INFINITY), AllStatistics(cases, r, o.lv_limit),
                        o.lv_limit};
   WriteCasesCsv(dir, cases, r);
@@ -564,7 +567,7 @@ int RunPlanarStudy(const PlanarOptions& o) {
   std::vector<SolveSummary> worst_solves;
   if (worst < cases.size()) worst_solves = PlotWorst(dir, cases[worst], o.threads);
   WriteReadme(dir, source, cases, r, stats, worst, worst_solves, seconds, o.threads);
-  std::cerr << kWho << ": report in " << (dir / "README.md").string() << '\n';
+  SayReport(kWho, dir / "README.md");
   return kExitOk;
 }
 
@@ -576,8 +579,7 @@ void AddPlanarStudy(CLI::App& study, int* exit_code) {
       "The planar methods of the paper's Table 1 against the curved reference over a set of "
       "profile pairs and poses (Table 3)");
   auto o = std::make_shared<PlanarOptions>();
-  planar->add_option("--out", o->out, "Output directory (CSV, PNG, README.md)")
-      ->capture_default_str();
+  AddOutOption(planar, &o->out, "Output directory (CSV, PNG, README.md)");
   planar
       ->add_option("--cases", o->cases,
                    "Cases file (a wheel-rail case with an [audit] section); default: the "
@@ -589,16 +591,8 @@ void AddPlanarStudy(CLI::App& study, int* exit_code) {
                    "without flange climbing")
       ->check(ZeroOrMore())
       ->capture_default_str();
-  planar->add_option("--threads", o->threads, "Worker threads")
-      ->check(ThreadCount(false))
-      ->capture_default_str();
-  planar->callback([=]() {
-    try {
-      *exit_code = RunPlanarStudy(*o);
-    } catch (...) {
-      *exit_code = ReportFailure(kWho);
-    }
-  });
+  AddThreadsOption(planar, &o->threads, false);
+  OnRun(planar, exit_code, kWho, [o]() { return RunPlanarStudy(*o); });
 }
 
 }  // namespace wrc::cli

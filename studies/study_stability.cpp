@@ -2,7 +2,6 @@
 // curved method, with the properties that must hold checked and reported (CSV, gnuplot PNGs
 // and a Markdown summary).
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,12 +10,12 @@
 #include <functional>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
@@ -24,7 +23,6 @@
 #include "wrc/core/case.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/wheelrail.h"
-#include "wrc/generator/worker_threads.h"
 
 namespace wrc::cli {
 namespace {
@@ -146,30 +144,26 @@ Sample SolveOne(const CaseMaker& make_case, double parameter) {
   Sample s;
   s.parameter = parameter;
   const auto t0 = std::chrono::steady_clock::now();
-  try {
-    const Case c = make_case();
-    const WheelRailResult r = SolveWheelRail(c);
-    s.status = ToString(r.status);
-    s.message = r.message;
-    s.fx = r.force_T(0);
-    s.fy = r.force_T(1);
-    s.fz = r.force_T(2);
-    s.z = r.z;
-    s.contact_y = r.has_force_location ? r.contact_y : NAN;
-    s.n_patches = static_cast<int>(r.patches.size());
-    s.fz_iterations = r.fz_iterations;
-    for (const PatchResult& p : r.patches) {
-      s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
-      s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
-    }
-  } catch (const InputError& e) {  // the case does not solve; a bug propagates
-    s.status = "error";
-    s.message = e.what();
-  } catch (const NumericalError& e) {
-    s.status = "error";
-    s.message = e.what();
-  }
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  RecordSolveError(
+      [&]() {
+        const Case c = make_case();
+        const WheelRailResult r = SolveWheelRail(c);
+        s.status = ToString(r.status);
+        s.message = r.message;
+        s.fx = r.force_T(0);
+        s.fy = r.force_T(1);
+        s.fz = r.force_T(2);
+        s.z = r.z;
+        s.contact_y = r.has_force_location ? r.contact_y : NAN;
+        s.n_patches = static_cast<int>(r.patches.size());
+        s.fz_iterations = r.fz_iterations;
+        for (const PatchResult& p : r.patches) {
+          s.normal_iterations = std::max(s.normal_iterations, p.normal_iterations);
+          s.tangential_iterations = std::max(s.tangential_iterations, p.tangential_iterations);
+        }
+      },
+      &s.status, &s.message);
+  s.seconds = SecondsSince(t0);
   return s;
 }
 
@@ -177,14 +171,10 @@ using Job = std::pair<CaseMaker, double>;
 
 std::vector<Sample> RunAll(const std::vector<Job>& jobs, int threads) {
   std::vector<Sample> out(jobs.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    for (std::size_t k = next++; k < jobs.size(); k = next++) {
-      out[k] = SolveOne(jobs[k].first, jobs[k].second);
-    }
-  };
-  gen::WorkerThreads pool(threads, worker, "wrc study stability");
-  pool.Join();
+  RunParallel(
+      jobs.size(), threads,
+      [&](std::size_t k) { out[k] = SolveOne(jobs[k].first, jobs[k].second); },
+      "wrc study stability");
   return out;
 }
 
@@ -226,10 +216,9 @@ void Plot(const fs::path& dir, const Sweep& sweep, const std::vector<std::string
        << " ? $3 : 1/0):9 with linespoints pt 7 ps 0.5 title '" << methods[m] << "'";
   }
   gp << "\nunset multiplot\n";
-  if (!RunGnuplot(dir, sweep.name + ".gp", gp.str())) {
-    std::cerr << "wrc study stability: gnuplot is not installed (Debian: gnuplot-nox): no "
-              << sweep.name << ".png\n";
-  }
+  DrawOrSay(dir, sweep.name + ".gp", gp.str(),
+            "wrc study stability: gnuplot is not installed (Debian: gnuplot-nox): no " +
+                sweep.name + ".png");
 }
 
 // What the summary's table holds; `how` says how the study was run.
@@ -392,12 +381,10 @@ std::string MissingProfile(const std::string& sweep, const fs::path& profiles) {
   return {};
 }
 
-int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool quick, int threads) {
-  fs::create_directories(out_dir);
-  const double f = quick ? 2.0 : 1.0;  // quick: double every step
-  const double dx = quick ? 0.5 : 0.25;
+// The built-in hard cases, every step doubled when `quick`.
+std::vector<Sweep> BuiltInSweeps(bool quick) {
+  const double f = quick ? 2.0 : 1.0;
   std::vector<Sweep> sweeps;
-  const std::vector<std::string> methods = {"planar", "planar-icp", "curved"};
   sweeps.push_back({"mbench_y", "Manchester S1002/UIC60, lateral shift, fz = 10 kN",
                     "wheelset y, mm", Range(0.0, 10.0, 0.1 * f), false, true});
   sweeps.push_back({"mbench_yaw", "Manchester, y = 4 mm, yaw", "yaw, rad",
@@ -416,26 +403,30 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
        "omega, rad/s", Range(-33.5, -30.7, 0.1 * f), false, false});
   sweeps.push_back({"groove_load", "Ball R10 in groove R10.02 (nearly conformal), load", "fz, N",
                     LogRange(100.0, 20000.0, quick ? 6 : 11), true, false});
-  auto method_text = [&](const std::string& m, bool heavy) {
-    return heavy ? HeavyHaulMethod(m) : Methods().at(m);
-  };
-  auto make_text = [&](const std::string& sweep, const std::string& m, double v) {
-    if (sweep == "mbench_y")
-      return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.3);
-    if (sweep == "mbench_yaw")
-      return Manchester(profiles, method_text(m, false), dx, 4, v, 0, 1e4, 0.3);
-    if (sweep == "mbench_spin")
-      return Manchester(profiles, method_text(m, false), dx, 4, 0, v, 1e4, 0.3);
-    if (sweep == "mbench_load")
-      return Manchester(profiles, method_text(m, false), dx, 0, 0, 0, v, 0.3);
-    if (sweep == "mbench_mu0")
-      return Manchester(profiles, method_text(m, false), dx, v, 0, 0, 1e4, 0.0);
-    if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(m, true), v, 0.0, -32.1);
-    if (sweep == "heavy_haul_omega") return HeavyHaul(profiles, method_text(m, true), 0, 1e5, v);
-    if (sweep == "groove_load") return Groove(profiles, method_text(m, false), v);
-    throw std::logic_error("no case template for sweep " + sweep);
-  };
+  return sweeps;
+}
 
+// The case text of built-in sweep `sweep` with method `m` at value `v`; grid dx for the
+// Manchester cases.
+std::string BuiltInCase(const fs::path& profiles, double dx, const std::string& sweep,
+                        const std::string& m, double v) {
+  auto method_text = [&](bool heavy) { return heavy ? HeavyHaulMethod(m) : Methods().at(m); };
+  if (sweep == "mbench_y") return Manchester(profiles, method_text(false), dx, v, 0, 0, 1e4, 0.3);
+  if (sweep == "mbench_yaw") return Manchester(profiles, method_text(false), dx, 4, v, 0, 1e4, 0.3);
+  if (sweep == "mbench_spin")
+    return Manchester(profiles, method_text(false), dx, 4, 0, v, 1e4, 0.3);
+  if (sweep == "mbench_load") return Manchester(profiles, method_text(false), dx, 0, 0, 0, v, 0.3);
+  if (sweep == "mbench_mu0") return Manchester(profiles, method_text(false), dx, v, 0, 0, 1e4, 0.0);
+  if (sweep == "heavy_haul_z") return HeavyHaul(profiles, method_text(true), v, 0.0, -32.1);
+  if (sweep == "heavy_haul_omega") return HeavyHaul(profiles, method_text(true), 0, 1e5, v);
+  if (sweep == "groove_load") return Groove(profiles, method_text(false), v);
+  throw std::logic_error("no case template for sweep " + sweep);
+}
+
+int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool quick, int threads) {
+  fs::create_directories(out_dir);
+  const double dx = quick ? 0.5 : 0.25;
+  const std::vector<std::string> methods = {"planar", "planar-icp", "curved"};
   OutputText summary(out_dir / "README.md");
   WriteSummaryHeader(summary, "The built-in hard cases, generated by `wrc study stability" +
                                   std::string(quick ? " --quick" : "") +
@@ -445,7 +436,7 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
   int failures = 0;
   std::vector<Sweep> done;
   std::string skipped;
-  for (const Sweep& sweep : sweeps) {
+  for (const Sweep& sweep : BuiltInSweeps(quick)) {
     // A sweep whose profiles are not in the directory is left out, and the summary says so.
     const std::string missing = MissingProfile(sweep.name, profiles);
     if (!missing.empty()) {
@@ -456,7 +447,7 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
     }
     done.push_back(sweep);
     const auto make = [&](const std::string& m, double v) -> CaseMaker {
-      const std::string text = make_text(sweep.name, m, v);
+      const std::string text = BuiltInCase(profiles, dx, sweep.name, m, v);
       return [text] { return ParseCase(text, fs::current_path(), "stability"); };
     };
     failures += RunSweep(sweep, methods, make, threads, out_dir, summary);
@@ -464,7 +455,7 @@ int RunStabilityStudy(const fs::path& out_dir, const fs::path& profiles, bool qu
   WritePlotLinks(summary, done);
   if (!skipped.empty()) summary << "\nLeft out, for want of their profiles:" << skipped << "\n";
   summary.Commit();
-  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  SayReport("stability", out_dir / "README.md");
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
 
@@ -510,9 +501,11 @@ int RunCaseSweep(const CaseSweepOptions& o, const fs::path& out_dir, int threads
   const int failures = RunSweep(sweep, o.methods, make, threads, out_dir, summary);
   WritePlotLinks(summary, {sweep});
   summary.Commit();
-  std::cerr << "stability: report in " << (out_dir / "README.md").string() << '\n';
+  SayReport("stability", out_dir / "README.md");
   return failures == 0 ? kExitOk : kExitGateFailed;
 }
+
+}  // namespace
 
 void AddStabilityStudy(CLI::App& study, int* exit_code) {
   auto* stability = study.add_subcommand(
@@ -523,7 +516,7 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
   auto out = std::make_shared<std::string>("study-stability");
   auto profiles = std::make_shared<std::string>();
   auto quick = std::make_shared<bool>(false);
-  auto threads = std::make_shared<int>(static_cast<int>(std::thread::hardware_concurrency()));
+  auto threads = std::make_shared<int>(AllCores());
   stability->add_option("CASE", sweep->case_path, "Wheel-rail case file to sweep")
       ->check(CLI::ExistingFile);
   std::vector<std::string> names;
@@ -540,43 +533,21 @@ void AddStabilityStudy(CLI::App& study, int* exit_code) {
       ->capture_default_str();
   stability->add_flag("--continuity", sweep->check_continuity,
                       "Also solve at half the step and report the jump ratio");
-  stability->add_option("--out", *out, "Output directory (CSV, PNG, README.md)")
-      ->capture_default_str();
+  AddOutOption(stability, out.get(), "Output directory (CSV, PNG, README.md)");
   stability->add_option("--profiles", *profiles,
                         "Without CASE: directory with the profiles of the built-in hard cases");
   stability->add_flag("--quick", *quick, "Built-in hard cases: double every step");
-  stability->add_option("--threads", *threads, "Worker threads")
-      ->check(ThreadCount(false))
-      ->capture_default_str();
-  stability->callback([=]() {
-    try {
-      if (!sweep->case_path.empty()) {
-        *exit_code = RunCaseSweep(*sweep, *out, std::max(1, *threads));
-        return;
-      }
-      if (profiles->empty()) {
-        throw InputError("give a CASE to sweep, or --profiles DIR for the built-in hard cases");
-      }
-      if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
-        throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
-      }
-      *exit_code = RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study stability");
+  AddThreadsOption(stability, threads.get(), false);
+  OnRun(stability, exit_code, "wrc study stability", [=]() {
+    if (!sweep->case_path.empty()) return RunCaseSweep(*sweep, *out, std::max(1, *threads));
+    if (profiles->empty()) {
+      throw InputError("give a CASE to sweep, or --profiles DIR for the built-in hard cases");
     }
+    if (!fs::exists(fs::path(*profiles) / "MBench_S1002_v3.prw")) {
+      throw InputError("--profiles " + *profiles + ": MBench_S1002_v3.prw not found there");
+    }
+    return RunStabilityStudy(*out, fs::absolute(*profiles), *quick, std::max(1, *threads));
   });
-}
-
-}  // namespace
-
-void AddStudyCommand(CLI::App& app, int* exit_code) {
-  auto* study = app.add_subcommand("study", "Studies of accuracy, cost and stability");
-  study->require_subcommand(1);
-  AddCostStudies(*study, exit_code);
-  AddStabilityStudy(*study, exit_code);
-  AddDynamicsStudy(*study, exit_code);
-  AddPaperStudy(*study, exit_code);
-  AddPlanarStudy(*study, exit_code);
 }
 
 }  // namespace wrc::cli

@@ -1,6 +1,6 @@
 // Hunting frequency, growth rate and run differences (analysis.h).
 
-#include "tools/dynamics/analysis.h"
+#include "studies/dynamics/analysis.h"
 
 #include <algorithm>
 #include <cmath>

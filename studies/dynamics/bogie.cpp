@@ -1,11 +1,11 @@
 // The bogie model of bogie.h: parameters, equations of motion, linear stability, integration.
 
-#include "tools/dynamics/bogie.h"
+#include "studies/dynamics/bogie.h"
 
-#include <chrono>
 #include <cmath>
 
-#include "tools/dynamics/parameter_file.h"
+#include "studies/dynamics/parameter_file.h"
+#include "tools/angles.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 
@@ -186,7 +186,7 @@ std::complex<double> DominantEigenvalue(const BogieMatrix& a) {
 }
 
 double FrequencyOf(std::complex<double> eigenvalue) {
-  return std::fabs(eigenvalue.imag()) / (2.0 * M_PI);
+  return std::fabs(eigenvalue.imag()) / (2.0 * tools::kPi);
 }
 
 double BogieCriticalSpeed(const BogieParameters& p, const LinearisedContact& contact, double v_low,
@@ -239,8 +239,7 @@ BogieVector Slope(const BogieParameters& p, const ForceSource (&forces)[2], cons
 
 BogieTrajectory SimulateBogie(const BogieParameters& p, const ForceSource (&forces)[2],
                               double velocity) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = ThreadCpuSeconds();
+  const RunClock clock;
   BogieTrajectory run;
   const int steps = static_cast<int>(std::lround(p.duration / p.time_step));
   const double h = p.time_step;
@@ -260,8 +259,8 @@ BogieTrajectory SimulateBogie(const BogieParameters& p, const ForceSource (&forc
     x += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
   }
   run.steps = steps;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.cpu_seconds = ThreadCpuSeconds() - cpu_start;
+  run.seconds = clock.WallSeconds();
+  run.cpu_seconds = clock.CpuSeconds();
   return run;
 }
 

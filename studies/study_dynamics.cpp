@@ -1,10 +1,9 @@
 // `wrc study dynamics TABLE.h5... --out DIR`: a wheelset simulated with its contact forces from
-// the table and from full solves (tools/dynamics): trajectories, hunting frequency and growth
+// the table and from full solves (studies/dynamics): trajectories, hunting frequency and growth
 // rate against speed, critical speeds, and what each costs.
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,21 +16,21 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "tools/dynamics/analysis.h"
-#include "tools/dynamics/bogie.h"
-#include "tools/dynamics/curving.h"
-#include "tools/dynamics/forces.h"
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/analysis.h"
+#include "studies/dynamics/bogie.h"
+#include "studies/dynamics/curving.h"
+#include "studies/dynamics/forces.h"
+#include "studies/dynamics/model.h"
+#include "studies/shipped_files.h"
+#include "studies/study_commands.h"
+#include "studies/study_common.h"
 #include "tools/wrc/commands.h"
 #include "tools/wrc/gnuplot.h"
 #include "tools/wrc/output_text.h"
-#include "tools/wrc/shipped_files.h"
 #include "tools/wrc/verify.h"
 #include "wrc/core/errors.h"
-#include "wrc/generator/worker_threads.h"
 #include "wrc/runtime.hpp"
 
 namespace wrc::cli {
@@ -83,13 +82,6 @@ struct Row {
   int steps = 0;
   std::string failure;  // why a solver run stopped
 };
-
-std::string Fixed(double v, int digits) {
-  if (std::isnan(v)) return "–";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
 
 // Four significant digits: the derivatives span eight decades, and their ratios are what is read.
 std::string Significant(double v) {
@@ -192,6 +184,11 @@ class TableStudy {
   std::optional<Trajectory> SolverRun(double speed_m_s);
   void CompareAt(double speed_m_s, const Trajectory& solver);
   void WriteSpeedsCsv() const;
+  // Draws out_/stem.png from `script` (out_/stem.gp), or says that gnuplot is missing.
+  void Draw(const std::string& stem, const std::string& script) const {
+    DrawOrSay(out_, stem + ".gp", script,
+              "wrc study dynamics: gnuplot is not installed: no " + stem + ".png");
+  }
   void WriteHuntingPlot() const;
   void WriteSummary() const;
   void WriteRunsSummary(std::ostream& md) const;
@@ -313,8 +310,7 @@ void TableStudy::PrepareSolver() {
   if (solver_forces_) return;
   const auto t0 = std::chrono::steady_clock::now();
   solver_forces_ = std::make_unique<dynamics::SolverForces>(solver_scene_, geometry_);
-  solver_roll_seconds_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  solver_roll_seconds_ = SecondsSince(t0);
   solver_roll_solves_ = solver_forces_->solves();
 }
 
@@ -381,8 +377,7 @@ void TableStudy::CompareAt(double speed_m_s, const Trajectory& solver) {
      << ".csv' skip 1 using 1:($3*1000) with lines lw 2 title 'table', '' skip 1 using 1:($5*1000) "
         "with lines dt 2 lw 2 title 'solver'\n"
      << "unset multiplot\n";
-  if (!RunGnuplot(out_, stem + ".gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no " << stem << ".png\n";
+  Draw(stem, gp.str());
 }
 
 // The adjacent (speed, growth rate) pairs whose growth changes sign from negative, sorting
@@ -416,14 +411,10 @@ void TableStudy::RunSolver() {
   // The first runs side by side, one thread each: a solver run is hundreds of CPU seconds.
   PrepareSolver();
   std::vector<std::optional<Trajectory>> runs(speeds.size());
-  std::atomic<std::size_t> next{0};
-  gen::WorkerThreads threads(
-      static_cast<int>(speeds.size()),
-      [this, &runs, &speeds, &next]() {
-        for (std::size_t k = next++; k < speeds.size(); k = next++) runs[k] = SolverRun(speeds[k]);
-      },
+  RunParallel(
+      speeds.size(), static_cast<int>(speeds.size()),
+      [this, &runs, &speeds](std::size_t k) { runs[k] = SolverRun(speeds[k]); },
       "wrc study dynamics");
-  threads.Join();
   for (std::size_t k = 0; k < speeds.size(); ++k) {
     if (!runs[k]) continue;
     CompareAt(speeds[k], *runs[k]);
@@ -581,8 +572,7 @@ void TableStudy::WriteCentredPlot() const {
         "'' skip 1 using 1:4 with lines title 'solver'\n"
      << "set ylabel 'M_z, N mm'\nplot 'centred.csv' skip 1 using 1:3 with lines lw 2 title "
         "'table', '' skip 1 using 1:5 with lines title 'solver'\nunset multiplot\n";
-  if (!RunGnuplot(out_, "centred.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no centred.png\n";
+  Draw("centred", gp.str());
 }
 
 void TableStudy::WriteLinearSummary(std::ostream& md) const {
@@ -704,25 +694,21 @@ void TableStudy::CurveVehicle() {
   }
   if (options_.no_solver) return;
   PrepareSolver();
-  std::atomic<std::size_t> next{0};
-  gen::WorkerThreads threads(
-      static_cast<int>(std::min<std::size_t>(curving_.size(), 2)),
-      [this, &next]() {
-        for (std::size_t k = next++; k < curving_.size(); k = next++) {
-          Curving& c = curving_[k];
-          dynamics::SolverForces leading = *solver_forces_, trailing = *solver_forces_;
-          const dynamics::ForceSource forces[2] = {
-              [&leading](const dynamics::State& s, double v) { return leading(s, v); },
-              [&trailing](const dynamics::State& s, double v) { return trailing(s, v); }};
-          try {
-            c.solver = dynamics::SolveCurving(*vehicle_, c.curve, forces);
-          } catch (const InputError& e) {
-            c.failure = e.what();
-          }
+  RunParallel(
+      curving_.size(), 2,
+      [this](std::size_t k) {
+        Curving& c = curving_[k];
+        dynamics::SolverForces leading = *solver_forces_, trailing = *solver_forces_;
+        const dynamics::ForceSource forces[2] = {
+            [&leading](const dynamics::State& s, double v) { return leading(s, v); },
+            [&trailing](const dynamics::State& s, double v) { return trailing(s, v); }};
+        try {
+          c.solver = dynamics::SolveCurving(*vehicle_, c.curve, forces);
+        } catch (const InputError& e) {
+          c.failure = e.what();
         }
       },
       "wrc study dynamics");
-  threads.Join();
   for (const Curving& c : curving_) {
     if (!c.failure.empty()) {
       std::cerr << "wrc study dynamics: warning: the solver's curving at R = "
@@ -780,8 +766,7 @@ void TableStudy::WriteCurvingPlot() const {
   // Tγ where the table has it (a table made without the t_gamma output gives NaN).
   if (!std::isnan(curving_.front().table.loads[0].wheel[0].t_gamma)) panel("T{/Symbol g}, N", 18);
   gp << "unset multiplot\n";
-  if (!RunGnuplot(out_, "curving.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no curving.png\n";
+  Draw("curving", gp.str());
 }
 
 void TableStudy::WriteCurvingSummary(std::ostream& md) const {
@@ -865,8 +850,7 @@ void TableStudy::WriteHuntingPlot() const {
         "'table', "
         "'' using (strcol(1) eq 'solver' ? $2 : 1/0):3 with points pt 5 ps 1.5 title 'solver'\n"
      << "unset multiplot\n";
-  if (!RunGnuplot(out_, "hunting.gp", gp.str()))
-    std::cerr << "wrc study dynamics: gnuplot is not installed: no hunting.png\n";
+  Draw("hunting", gp.str());
 }
 
 void TableStudy::WriteSummary() const {
@@ -1055,13 +1039,7 @@ void AddDynamicsStudy(CLI::App& study, int* exit_code) {
                   "critical speed and hunting frequency on each source's linearised contact, "
                   "and the runs on both sources")
       ->check(CLI::ExistingFile);
-  cmd->callback([options, exit_code]() {
-    try {
-      *exit_code = RunDynamicsStudy(*options);
-    } catch (...) {
-      *exit_code = ReportFailure("wrc study dynamics");
-    }
-  });
+  OnRun(cmd, exit_code, "wrc study dynamics", [options]() { return RunDynamicsStudy(*options); });
 }
 
 }  // namespace wrc::cli

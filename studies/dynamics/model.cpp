@@ -1,18 +1,17 @@
 // The wheelset model of model.h: parameters, equations of motion and the integrator.
 
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/model.h"
 
 #include <time.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string_view>
 #include <utility>
 
-#include "tools/dynamics/parameter_file.h"
+#include "studies/dynamics/parameter_file.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/toml_reader.h"
 
@@ -117,8 +116,7 @@ double ThreadCpuSeconds() {
 }
 
 Trajectory Simulate(const Parameters& p, const ForceSource& forces, double velocity) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = ThreadCpuSeconds();
+  const RunClock clock;
   Trajectory run;
   const int steps = static_cast<int>(std::lround(p.duration / p.time_step));
   run.t.reserve(steps + 1);
@@ -134,8 +132,8 @@ Trajectory Simulate(const Parameters& p, const ForceSource& forces, double veloc
     s = Rk4Step(p, forces, s, velocity, p.time_step, &run.flags);
   }
   run.steps = steps;
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.cpu_seconds = ThreadCpuSeconds() - cpu_start;
+  run.seconds = clock.WallSeconds();
+  run.cpu_seconds = clock.CpuSeconds();
   return run;
 }
 

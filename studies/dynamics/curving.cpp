@@ -1,12 +1,13 @@
 // Quasi-static curving of the bogie (curving.h).
 
-#include "tools/dynamics/curving.h"
+#include "studies/dynamics/curving.h"
 
 #include <unsupported/Eigen/NonLinearOptimization>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+
+#include "studies/dynamics/model.h"
 
 namespace wrc::dynamics {
 namespace {
@@ -184,7 +185,7 @@ bool SolveByContinuation(const BogieParameters& p, const CurveCase& curve,
 
 CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
                            const ForceSource (&forces)[2]) {
-  const auto start = std::chrono::steady_clock::now();
+  const RunClock clock;
   CurvingResult result;
   Vector u = Vector::Zero(6);
   if (!SolveFrom(p, curve, forces, u, &result.evaluations)) {
@@ -202,7 +203,7 @@ CurvingResult SolveCurving(const BogieParameters& p, const CurveCase& curve,
   result.residual = residual.cwiseAbs().maxCoeff();
   result.converged = result.residual < kCurvingResidual;
   result.evaluations += equations.evaluations();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = clock.WallSeconds();
   return result;
 }
 

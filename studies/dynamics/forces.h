@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "tools/dynamics/model.h"
+#include "studies/dynamics/model.h"
 #include "wrc/core/case.h"
 #include "wrc/runtime.hpp"
 
