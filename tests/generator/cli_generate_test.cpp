@@ -299,16 +299,21 @@ TEST_F(CliGenerateTest, TwoMpiRanksRefineToTheSameTableAsOneProcess) {
   test::ExpectIdenticalTables(single, mpi);
 }
 
-TEST_F(CliGenerateTest, ResumingWithAnotherSceneIsRefused) {
-  const fs::path table = *dir_ / "other.h5";
-  const fs::path other_scene = test::WriteFile(*dir_ / "other.toml", KillScene() + "# edited\n");
+// Generates the fixture's scene into `table` and stops after one point: a journal to resume.
+void StopAfterOnePoint(const fs::path& table, const fs::path& scene) {
   GenerateOptions options;
   options.output = table;
   options.threads = 1;
   options.max_points = 1;
   options.progress = ProgressMode::kOff;
   options.mpi = MpiMode::kOff;
-  GenerateTable(LoadScene(scene_), options);
+  GenerateTable(LoadScene(scene), options);
+}
+
+TEST_F(CliGenerateTest, ResumingWithAnotherSceneIsRefused) {
+  const fs::path table = *dir_ / "other.h5";
+  const fs::path other_scene = test::WriteFile(*dir_ / "other.toml", KillScene() + "# edited\n");
+  StopAfterOnePoint(table, scene_);
   const test::CommandResult result =
       test::RunCommand(Generate(other_scene, table, "--resume"), dir_->path());
   EXPECT_EQ(result.exit_code, 2);
@@ -320,13 +325,7 @@ TEST_F(CliGenerateTest, ResumingWithAnotherSceneIsRefused) {
 TEST_F(CliGenerateTest, ResumingFromADamagedJournalIsBadInput) {
   const fs::path table = *dir_ / "damaged.h5";
   const fs::path journal = table.string() + ".journal";
-  GenerateOptions options;
-  options.output = table;
-  options.threads = 1;
-  options.max_points = 1;
-  options.progress = ProgressMode::kOff;
-  options.mpi = MpiMode::kOff;
-  GenerateTable(LoadScene(scene_), options);
+  StopAfterOnePoint(table, scene_);
   std::string bytes = test::ReadFile(journal);
   ASSERT_GT(bytes.size(), 12u);
   bytes[12] = static_cast<char>(bytes[12] ^ 0x01);  // inside the header: its CRC no longer holds
