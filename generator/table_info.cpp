@@ -48,6 +48,7 @@ TableInfo InfoOfContent(const format::TableContent& content) {
   for (const auto& [name, value] : content.attributes) {
     if (name != schema::kFormat) info.attributes.emplace_back(name, value);
   }
+  for (const auto& [name, value] : content.numbers) info.numbers.emplace_back(name, value);
   for (const format::AxisContent& axis : content.axes) {
     info.axes.push_back({axis.name, axis.unit, axis.values});
   }

@@ -363,6 +363,17 @@ TEST_F(CliGenerateTest, InfoDescribesTheTable) {
   ASSERT_EQ(info["outputs"].size(), 4u);
   EXPECT_EQ(info["outputs"][3]["name"], "z");
   EXPECT_EQ(info["outputs"][0]["unit"], "N");
+  // The fixed state, as the wheelset API reads it: the scene's values, null for the axes.
+  EXPECT_EQ(info["attributes"]["wheelset_velocity"], 2000.0);
+  EXPECT_EQ(info["attributes"]["fixed_fz"], 10000.0);
+  EXPECT_EQ(info["attributes"]["wheelset_side"], "right");
+  EXPECT_TRUE(info["attributes"]["fixed_yaw"].is_null());
+  EXPECT_TRUE(info["attributes"]["fixed_y"].is_null());
+  const test::CommandResult text = test::RunCommand(
+      Quoted(test::WrcBinary()) + " info " + Quoted(reference_.string()), dir_->path());
+  EXPECT_NE(text.out.find("fixed state           right wheel, V 2000 mm/s, r0 460 mm; fz 10000"),
+            std::string::npos)
+      << text.out;
   EXPECT_EQ(info["status"]["ok"], 40);
   EXPECT_EQ(info["status"]["error"], 0);
   EXPECT_EQ(info["attributes"]["scene"], KillScene());

@@ -58,6 +58,10 @@ json InfoJson(const std::string& path, const TableInfo& info) {
   if (info.other_status > 0) status["invalid"] = info.other_status;
   json attributes = json::object();
   for (const auto& [name, value] : info.attributes) attributes[name] = value;
+  // NaN (a quantity the table does not fix) as null: JSON has no NaN.
+  for (const auto& [name, value] : info.numbers) {
+    attributes[name] = std::isfinite(value) ? json(value) : json(nullptr);
+  }
   json failures = json::array();
   for (const TableInfo::Failure& failure : info.failures) {
     json point = json::object();
@@ -102,6 +106,26 @@ nlohmann::json RefineAttribute(const std::string& path, const TableInfo& info,
                      " wrc generate writes there; the table is damaged or was edited");
   }
   return value;
+}
+
+// The state the table was made at, as the wheelset API reads it: speed, radius, side, and the
+// value of each state quantity that is not an axis ("-" where the table does not fix it).
+void PrintFixedState(const TableInfo& info) {
+  if (info.numbers.empty()) return;  // written before the fixed state was stored typed
+  const auto number = [&info](const std::string& name) -> double {
+    for (const auto& [key, value] : info.numbers) {
+      if (key == name) return value;
+    }
+    return NAN;
+  };
+  std::cout << "  fixed state           " << Attribute(info, "wheelset_side") << " wheel, V "
+            << number("wheelset_velocity") << " mm/s, r0 " << number("wheelset_nominal_radius")
+            << " mm;";
+  for (const StateQuantity& q : kStateQuantities) {
+    const double value = number("fixed_" + std::string(q.name));
+    if (std::isfinite(value)) std::cout << ' ' << q.name << ' ' << value;
+  }
+  std::cout << '\n';
 }
 
 // The refine_* attributes of a refined table as one JSON object (null for other tables).
@@ -208,6 +232,7 @@ void PrintHuman(const std::string& path, const TableInfo& info) {
     const std::string value = Attribute(info, name);
     if (!value.empty()) std::cout << "  " << std::left << std::setw(22) << name << value << '\n';
   }
+  PrintFixedState(info);
   if (!flat) {
     std::cout << "  profiles: rail " << info.rail_profile_name << " (" << info.rail_profile_bytes
               << " bytes), wheel " << info.wheel_profile_name << " (" << info.wheel_profile_bytes

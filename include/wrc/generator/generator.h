@@ -241,6 +241,9 @@ struct TableInfo {
   std::int64_t warnings_count = -1;
   /// Root string attributes (wrc_version, created, scene, profile hashes, ...), by name.
   std::vector<std::pair<std::string, std::string>> attributes;
+  /// Root float64 attributes (the fixed state: wheelset_velocity, fixed_y, ...), by name; none
+  /// in tables written before them.
+  std::vector<std::pair<std::string, double>> numbers;
   std::vector<Axis> axes;
   std::vector<Output> outputs;
   std::size_t points = 0;
