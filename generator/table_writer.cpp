@@ -79,21 +79,6 @@ static_assert(kPointStatusCount == schema::kStoredStatusCount);
 
 namespace {
 
-// The fixed state the runtime's wheelset API needs, typed, so that it reads no scene text.
-void WriteFixedState(h5::File& file, const Scene& scene) {
-  const Case& c = scene.base;
-  file.WriteDoubleAttribute(schema::kWheelsetVelocity, c.state.velocity);
-  file.WriteDoubleAttribute(schema::kWheelsetNominalRadius, c.wheelset.nominal_radius);
-  file.WriteDoubleAttribute(schema::kWheelProfileOffset, 0.5 * c.wheelset.flange_back_distance -
-                                                             c.wheelset.flange_back_position);
-  file.WriteStringAttribute(schema::kWheelsetSide,
-                            c.wheelset.side == WheelSide::kLeft ? "left" : "right");
-  for (const StateQuantity& q : kStateQuantities) {
-    file.WriteDoubleAttribute(schema::kFixedPrefix + std::string(q.name),
-                              FixedStateValue(scene, q.name));
-  }
-}
-
 void WriteTableContents(h5::File& file, const Scene& scene, const TableData& data,
                         const TableProvenance& provenance) {
   file.WriteStringAttribute(schema::kFormat, schema::kFormatName);
@@ -107,7 +92,7 @@ void WriteTableContents(h5::File& file, const Scene& scene, const TableData& dat
   file.WriteStringAttribute(schema::kZWarmStart, provenance.z_warm_start);
   file.WriteIntAttribute(schema::kWarningsCount, static_cast<std::int64_t>(data.warning_points));
   for (const auto& [name, value] : provenance.attributes) file.WriteStringAttribute(name, value);
-  WriteFixedState(file, scene);
+  WriteFixedStateAttributes(file, scene);
 
   const h5::DatasetOptions storage = h5::CompressedChecked();
   std::vector<h5::Size> shape;
@@ -175,3 +160,22 @@ void WriteTableFile(const std::filesystem::path& path, const Scene& scene, const
 }
 
 }  // namespace wrc::gen
+
+namespace wrc {
+
+// The fixed state the runtime's wheelset API needs, typed, so that it reads no scene text.
+void WriteFixedStateAttributes(h5::File& file, const Scene& scene) {
+  const Case& c = scene.base;
+  file.WriteDoubleAttribute(schema::kWheelsetVelocity, c.state.velocity);
+  file.WriteDoubleAttribute(schema::kWheelsetNominalRadius, c.wheelset.nominal_radius);
+  file.WriteDoubleAttribute(schema::kWheelProfileOffset, 0.5 * c.wheelset.flange_back_distance -
+                                                             c.wheelset.flange_back_position);
+  file.WriteStringAttribute(schema::kWheelsetSide,
+                            c.wheelset.side == WheelSide::kLeft ? "left" : "right");
+  for (const StateQuantity& q : kStateQuantities) {
+    file.WriteDoubleAttribute(schema::kFixedPrefix + std::string(q.name),
+                              FixedStateValue(scene, q.name));
+  }
+}
+
+}  // namespace wrc

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -285,6 +286,48 @@ TEST(CliUpgrade, OlderTablesComeOutSealedWithTheSameNumbers) {
   const CommandResult onto_itself = Upgrade(unsealed, unsealed);
   EXPECT_EQ(onto_itself.exit_code, 2) << onto_itself.err;
   EXPECT_NE(Table(unsealed.string()).warning(), "");
+}
+
+// A table written before tables stored their fixed state typed (here: a new one with those
+// attributes removed) gets them from its scene text when upgraded: the same values, NaN for the
+// axes, as the generator writes them.
+TEST(CliUpgrade, TablesWithoutTheTypedFixedStateGetIt) {
+  ScratchDir dir("upgrade_fixed_state");
+  const fs::path scene = test::WriteFile(
+      dir / "scene.toml", test::TinyScene("axes = [\"y\"]\ny = [0.0, 2.0]\noutputs = [\"fy\"]",
+                                          "fz = 8000.0\nroll = 0.001"));
+  const fs::path table = dir / "new.h5", old = dir / "old.h5";
+  GenerateOptions options;
+  options.output = table;
+  options.progress = ProgressMode::kOff;
+  options.mpi = MpiMode::kOff;
+  ASSERT_TRUE(GenerateTable(LoadScene(scene), options).complete);
+  fs::copy_file(table, old);
+  {
+    const auto lock = h5::LibraryLock();
+    h5::File file = h5::File::Open(old.string(), h5::File::Mode::kReadWrite);
+    for (const std::string& name : file.AttributeNames()) {
+      if (name.rfind("fixed_", 0) == 0 || name.rfind("wheelset_", 0) == 0 ||
+          name == "wheel_profile_offset") {
+        file.RemoveAttribute(name);
+      }
+    }
+  }
+  h5::SealFile(old.string());
+  ASSERT_THROW(Table(old.string()).number_attribute("wheelset_velocity"), TableError);
+  const fs::path upgraded = dir / "upgraded.h5";
+  const CommandResult result = Upgrade(old, upgraded);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Table a(table.string()), b(upgraded.string());
+  EXPECT_EQ(b.attribute("wheelset_side"), "right");
+  for (const std::string name :
+       {"wheelset_velocity", "wheelset_nominal_radius", "wheel_profile_offset", "fixed_y",
+        "fixed_roll", "fixed_fz", "fixed_z", "fixed_mu", "fixed_omega", "fixed_y_wheel"}) {
+    const double expected = a.number_attribute(name), got = b.number_attribute(name);
+    EXPECT_TRUE(got == expected || (std::isnan(got) && std::isnan(expected))) << name;
+  }
+  EXPECT_EQ(b.number_attribute("fixed_roll"), 0.001);
+  EXPECT_TRUE(std::isnan(b.number_attribute("fixed_y")));  // the axis
 }
 
 // Damaged tables in HDF5's earliest format (no metadata checksums) found by mutating one: HDF5

@@ -1,6 +1,7 @@
-// `wrc upgrade OLD.h5 -o NEW.h5`: a table written before tables were sealed, rewritten in the
-// checksummed format with a seal. The old file is read in a child process: in HDF5's earliest
-// format its metadata carries no checksums, and HDF5 1.10 can crash on a damaged byte of it.
+// `wrc upgrade OLD.h5 -o NEW.h5`: a table written before tables were sealed, or before they
+// stored their fixed state typed, rewritten in the checksummed format with a seal and that state.
+// The old file is read in a child process: in HDF5's earliest format its metadata carries no
+// checksums, and HDF5 1.10 can crash on a damaged byte of it.
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,9 +17,11 @@
 
 #include "runtime/hdf5/hdf5.h"
 #include "runtime/hdf5/seal.h"
+#include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
 #include "wrc/core/output_file.h"
+#include "wrc/core/scene.h"
 #include "wrc/generator/generator.h"
 #include "wrc/runtime.hpp"
 
@@ -26,6 +29,24 @@ namespace wrc::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A table written before tables stored their fixed state typed gets it from its own scene text,
+// parsed as the generator parses a scene (the profiles are not needed for it), so that the
+// wheelset API and `wrc info` read the upgraded table as a new one. A scene this build no longer
+// parses keeps the table as it was: the runtime then reads the text, as before.
+void AddFixedState(h5::File& target, const std::string& old) {
+  if (target.HasAttribute(schema::kWheelsetVelocity) || !target.HasAttribute(schema::kScene)) {
+    return;
+  }
+  try {
+    const Scene scene = ParseScene(target.ReadStringAttribute(schema::kScene),
+                                   fs::path(old).parent_path(), old + ":/scene");
+    WriteFixedStateAttributes(target, scene);
+  } catch (const InputError& e) {
+    std::cerr << "wrc upgrade: warning: the fixed state stays in the scene text only: " << e.what()
+              << '\n';
+  }
+}
 
 // In the child: every member and root attribute of `old` into `copy`, sealed and read back.
 // The child's failure message goes to `report` (a pipe) and its class to the exit code
@@ -38,6 +59,7 @@ namespace fs = std::filesystem;
     {
       h5::File target = h5::File::Create(copy, true, h5::FileFormat::kChecksummed, true);
       h5::CopyContents(source, &target);
+      AddFixedState(target, old);
       target.Flush();
     }
     h5::SealFile(copy);

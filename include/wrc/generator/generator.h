@@ -33,6 +33,10 @@
 
 namespace wrc {
 
+namespace h5 {
+class File;
+}  // namespace h5
+
 /// Outcome of one grid point, as stored in the table's /status dataset.
 enum class PointStatus : std::int8_t {
   kOk = 0,            ///< Solved; all outputs hold numbers.
@@ -215,6 +219,11 @@ void CheckStoredProfileDigest(const std::string& table, const std::string& name,
 
 /// The version string stored in tables (`wrc_version`).
 const char* GeneratorVersion();
+
+/// Writes the fixed state the runtime's wheelset API reads (the wheelset_*, wheel_profile_offset
+/// and fixed_* root attributes of the table schema) from the scene, into a table being written
+/// (and into an older table `wrc upgrade` rewrites).
+void WriteFixedStateAttributes(h5::File& file, const Scene& scene);
 
 /// What `wrc info` shows about a table file.
 struct TableInfo {
