@@ -2,6 +2,7 @@
 // docs/reference/cli.md, wrc verify, the tolerance gate.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -21,12 +22,16 @@ std::string Wrc() { return std::string(WRC_BINARY_DIR) + "/wrc"; }
 
 // Runs a command, returns its exit code and stdout.
 int RunCommand(const std::string& command, std::string* out) {
-  const fs::path file = fs::temp_directory_path() / "wrc_verify_test_stdout.txt";
+  // One file per test process: ctest runs these tests side by side.
+  const fs::path file =
+      fs::temp_directory_path() / ("wrc_verify_test_stdout_" + std::to_string(::getpid()) + ".txt");
   const int status = std::system((command + " > '" + file.string() + "' 2>/dev/null").c_str());
   std::ifstream in(file);
   std::stringstream text;
   text << in.rdbuf();
   *out = text.str();
+  in.close();
+  fs::remove(file);
   return WEXITSTATUS(status);
 }
 
