@@ -1,6 +1,7 @@
 // The wheelset API of include/wrc/runtime.h: maps a wheelset's state to the axes of each
 // wheel's table, evaluates both and assembles the forces in track coordinates.
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -42,7 +43,14 @@ enum Output { kFx, kFy, kFzOut, kMx, kMy, kMz, kContactY, kContactAngle, kTGamma
 constexpr std::string_view kOutputNames[kOutputs] = {
     "fx", "fy", "fz", "mx", "my", "mz", "contact_y", "contact_angle", "t_gamma"};
 
-constexpr double OutputMirror(int k) { return wrc::FindOutputQuantity(kOutputNames[k])->mirror; }
+// Their signs under the mirror image, looked up in the registry once, at compile time: the
+// lookup compares names, which an evaluation should not.
+constexpr std::array<double, kOutputs> OutputMirrors() {
+  std::array<double, kOutputs> mirror{};
+  for (int k = 0; k < kOutputs; ++k) mirror[k] = wrc::FindOutputQuantity(kOutputNames[k])->mirror;
+  return mirror;
+}
+constexpr std::array<double, kOutputs> kOutputMirror = OutputMirrors();
 
 // Most outputs a table may have to be read here: the result buffer lives on the stack.
 constexpr int kMaxOutputs = 64;
@@ -241,7 +249,7 @@ int FixedFlag(const Wheel& w, const double (&value)[kQuantities]) {
 double MirroredOutput(const Wheel& w, const double* out, int k) {
   const int index = w.output_index[k];
   if (index < 0) return NAN;
-  return w.mirror > 0.0 ? out[index] : OutputMirror(k) * out[index];
+  return w.mirror > 0.0 ? out[index] : kOutputMirror[k] * out[index];
 }
 
 // A coordinate that lies outside its axis by rounding only (spin recomputed from omega at an

@@ -95,24 +95,20 @@ RollingRadiusDifference DrOf(const std::vector<Row>& rows) {
   return dr;
 }
 
-// The table's point for a lateral shift y: y (or y_wheel, the same without roll) at y, every
-// other axis at 0 within its range, except fz at its lightest node, the load nearest the rigid
-// contact. A table over z has no such load and is refused, as is one made for a left wheel
-// (the right wheel reads the table, the left its mirror image).
-std::vector<double> TablePoint(const Table& table, double y) {
+// The table's point for the shifts: y (or y_wheel, the same without roll) at `*lateral`, set per
+// shift; every other axis at 0 within its range, except fz at its lightest node, the load
+// nearest the rigid contact (CheckGeometryTable refuses a table over z).
+std::vector<double> BasePoint(const Table& table, int* lateral) {
   std::vector<double> point;
   for (int a = 0; a < table.num_axes(); ++a) {
     const std::string name = table.axis_name(a);
     const std::vector<double> nodes = table.axis_values(a);
-    point.push_back(name == "y" || name == "y_wheel" ? y
-                    : name == "fz"                   ? nodes.front()
-                                   : std::clamp(0.0, nodes.front(), nodes.back()));
+    if (name == "y" || name == "y_wheel") *lateral = a;
+    point.push_back(name == "fz" ? nodes.front() : std::clamp(0.0, nodes.front(), nodes.back()));
   }
   return point;
 }
 
-// The rolling radii under load for each shift: the right wheel at y, the left (its right-side
-// equivalent, as the rigid rows hold it) at −y.
 void CheckGeometryTable(const Table& table, const std::string& path) {
   const std::vector<std::string> axes = table.axis_names(), outputs = table.output_names();
   const auto has = [](const std::vector<std::string>& names, const char* name) {
@@ -137,9 +133,13 @@ void ReadTableRadii(const std::string& path, std::vector<Row>& rows) {
   const Table table(path);
   CheckGeometryTable(table, path);
   const int radius = table.output_index("rolling_radius");
+  int lateral = 0;
+  std::vector<double> point = BasePoint(table, &lateral);
   for (Row& r : rows) {
-    r.table_r_right = table.eval(TablePoint(table, r.y))[radius];
-    r.table_r_left = table.eval(TablePoint(table, -r.y))[radius];
+    point[static_cast<std::size_t>(lateral)] = r.y;
+    r.table_r_right = table.eval(point)[radius];
+    point[static_cast<std::size_t>(lateral)] = -r.y;
+    r.table_r_left = table.eval(point)[radius];
   }
 }
 

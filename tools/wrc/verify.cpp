@@ -17,7 +17,6 @@
 #include <utility>
 
 #include "runtime/format/flat_table.h"
-#include "runtime/format/table_content.h"
 #include "runtime/hdf5/table_schema.h"
 #include "tools/wrc/commands.h"
 #include "wrc/core/errors.h"
@@ -279,13 +278,15 @@ void AssignLoads(const Scene& scene, const std::vector<std::string>& outputs,
   }
 }
 
-// Each output's node values, in the table's storage order, read as the runtime reads them.
-std::vector<std::vector<double>> OutputNodeValues(const std::string& table) {
-  const format::TableContent content = format::ReadTableContent(table);
-  const std::size_t n_out = content.outputs.size();
-  std::vector<std::vector<double>> values(n_out, std::vector<double>(content.num_nodes()));
-  for (std::size_t node = 0; node < content.num_nodes(); ++node) {
-    for (std::size_t o = 0; o < n_out; ++o) values[o][node] = content.values[node * n_out + o];
+// Each output's node values, in the table's storage order, as the loaded table holds them.
+std::vector<std::vector<double>> OutputNodeValues(const Table& table) {
+  const double* nodes = wrc_table_node_values(table.get());
+  std::size_t count = 1;
+  for (int a = 0; a < table.num_axes(); ++a) count *= static_cast<std::size_t>(table.axis_size(a));
+  const auto n_out = static_cast<std::size_t>(table.num_outputs());
+  std::vector<std::vector<double>> values(n_out, std::vector<double>(count));
+  for (std::size_t node = 0; node < count; ++node) {
+    for (std::size_t o = 0; o < n_out; ++o) values[o][node] = nodes[node * n_out + o];
   }
   return values;
 }
@@ -426,7 +427,7 @@ Verification VerifyTable(const VerifyOptions& opt) {
   std::vector<std::vector<double>> axes;
   for (int a = 0; a < table.num_axes(); ++a) axes.push_back(table.axis_values(a));
   // Output values over the table, for the ranges, the patch counts and the near-jump sampler.
-  const std::vector<std::vector<double>> values = OutputNodeValues(opt.table);
+  const std::vector<std::vector<double>> values = OutputNodeValues(table);
   std::vector<ErrorScale> scales(n_out);
   for (std::size_t o = 0; o < n_out; ++o) scales[o] = ErrorScaleOf(values[o]);
   const auto patches_output = std::find(v.output_names.begin(), v.output_names.end(), "n_patches");
